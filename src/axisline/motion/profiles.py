@@ -1,0 +1,649 @@
+"""Point-to-point and velocity profiles: input state + limits in, trajectory out.
+
+    from axisline.motion.profiles import plan, State, Limits
+    prof = plan("jerk", State(p=0.0, v=0.0, a=0.0), State(p=10.0, v=0.0),
+                Limits(v=1.0, a=2.0, d=2.0, j=10.0))
+    prof.duration, prof.sample(t) -> (p, v, a, j)
+
+Every profile is a short list of segments. A segment is either a polynomial with
+constant jerk or a sin² acceleration ramp; sampling finds the segment with a
+bisection over at most ~10 start times and evaluates a closed form, so it is O(1)
+and builds no containers.
+
+How the plan is found (shapes "trapezoid", "jerk", "sin2")
+------------------------------------------------------------
+In the frame where the move goes "up" (the other direction is mirrored), a
+time-optimal profile has the form
+
+    ramp a0 -> A1,  hold A1 (only at the acceleration limit),
+    ramp A1 -> A2   (with a cruise at a = 0, |v| = v_max, inserted where a crosses 0),
+    hold A2 (only at the deceleration limit),  ramp A2 -> 0
+
+with A1 >= a0 and A2 <= 0 ("up-down-down-up" jerk signs). This is the family of
+profiles Ruckig's time-optimal step 1 searches (see its ``Profile`` check), so the
+durations agree. Given (A1, hold1) the velocity condition fixes A2 and hold2 in
+closed form; the remaining position condition is one scalar equation, solved by
+bracketing on a grid and refining with the Illinois method. The fastest valid
+candidate over both directions wins. A ramp's duration is k*|dA|/j, with k = 1
+for a linear ramp, pi/2 for sin² (same peak jerk), and 0 for the trapezoid
+(infinite jerk); the mean acceleration over a ramp is (A+B)/2 for both shapes, so
+one velocity equation serves all three shapes.
+
+The sin² shape splits the A1 -> A2 ramp at a = 0 into two bells, as the WAGO
+750-672 profile does (ramp-up, drive phase, ramp-down as separate bells).
+
+Limits.a bounds the ramp that drives toward the target (A1), Limits.d the one that
+brakes into it (A2). With a == d this is the symmetric limit Ruckig uses.
+
+WAGO time/path variants ("trapezoid/time", "jerk/time", "sin2/time", ".../path")
+------------------------------------------------------------------------------
+The ramp-up lasts Limits.up_time and the ramp-down Limits.down_time (or covers
+up_path/down_path): ramp v0 -> vp, cruise, ramp vp -> vf, each ramp a single bell
+(triangle for "jerk", sin² bell for "sin2", constant for "trapezoid"). See
+docs/decisions.md (WAGO §2.7).
+
+Start states outside the limits (|a0| above the limit, or a velocity that would
+exceed v_max) first get a braking phase back inside the limits; from there the
+plan is time-optimal. Ruckig brakes with a different heuristic, so such cases
+need not match its duration.
+"""
+
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+from dataclasses import dataclass
+from typing import Callable
+
+__all__ = ["State", "Limits", "Profile", "plan", "plan_velocity", "SHAPES"]
+
+_SIN2_C = 0.25 - 1.0 / (math.pi * math.pi)  # position coefficient of a sin² ramp
+_LINEAR, _SIN2 = 0, 1  # segment kinds
+
+# base shape -> (ramp time factor k, position coefficient c, split ramps at a = 0)
+_BASE = {
+    "trapezoid": (0.0, 1.0 / 6.0, False),
+    "jerk": (1.0, 1.0 / 6.0, False),
+    "sin2": (math.pi / 2.0, _SIN2_C, True),
+}
+SHAPES = tuple(_BASE) + tuple(f"{b}/{v}" for v in ("time", "path") for b in _BASE)
+
+
+@dataclass(frozen=True, slots=True)
+class State:
+    """Kinematic state: position, velocity, acceleration (user units, seconds)."""
+
+    p: float = 0.0
+    v: float = 0.0
+    a: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Limits:
+    """Motion limits.
+
+    v: maximum speed; a: acceleration; d: deceleration (None: same as a);
+    j: jerk (shapes "jerk" and "sin2"; for sin² the peak jerk);
+    ramp_time: alternative to j, time for the acceleration to rise from 0 to a
+    (WAGO Acceleration_RampUp_Param with AccParam 0): j = a / ramp_time;
+    up_time/down_time, up_path/down_path: the WAGO time/path variants.
+    """
+
+    v: float
+    a: float
+    d: float | None = None
+    j: float | None = None
+    ramp_time: float | None = None
+    up_time: float | None = None
+    down_time: float | None = None
+    up_path: float | None = None
+    down_path: float | None = None
+
+
+class Profile:
+    """A planned trajectory; sample(t) -> (p, v, a, j).
+
+    Before t = 0 it holds the start state; from `duration` on it continues at the
+    final velocity with a = 0 (a velocity profile keeps running, a position profile
+    that ends at rest stays at its target).
+    """
+
+    __slots__ = ("duration", "start", "target", "shape", "_t0", "_p", "_v", "_a", "_j", "_tau", "_kind")
+
+    def __init__(self, shape: str, start: State, target: State, segments: list[tuple]) -> None:
+        self.shape = shape
+        self.start = start
+        self.target = target
+        t = 0.0
+        self._t0: list[float] = []
+        self._p: list[float] = []
+        self._v: list[float] = []
+        self._a: list[float] = []
+        self._j: list[float] = []
+        self._tau: list[float] = []
+        self._kind: list[int] = []
+        for kind, dur, p, v, a, x in segments:
+            if dur <= 0.0:
+                continue
+            self._t0.append(t)
+            self._p.append(p)
+            self._v.append(v)
+            self._a.append(a)
+            self._j.append(x)
+            self._tau.append(dur)
+            self._kind.append(kind)
+            t += dur
+        self.duration = t
+
+    @property
+    def segments(self) -> int:
+        return len(self._t0)
+
+    def sample(self, t: float) -> tuple[float, float, float, float]:
+        """State at time t (seconds from the start of the profile)."""
+        if t >= self.duration:
+            tg = self.target
+            return (tg.p + tg.v * (t - self.duration), tg.v, 0.0, 0.0)
+        if t <= 0.0:
+            s = self.start
+            return (s.p + s.v * t, s.v, s.a, 0.0) if t < 0.0 else (s.p, s.v, s.a, 0.0)
+        i = bisect_right(self._t0, t) - 1
+        dt = t - self._t0[i]
+        p, v, a, x = self._p[i], self._v[i], self._a[i], self._j[i]
+        if self._kind[i] == _LINEAR:
+            return (
+                p + dt * (v + dt * (a / 2.0 + dt * x / 6.0)),
+                v + dt * (a + dt * x / 2.0),
+                a + dt * x,
+                x,
+            )
+        tau = self._tau[i]
+        w = math.pi / tau
+        s, c = math.sin(w * dt), math.cos(w * dt)
+        return (
+            p + v * dt + a * dt * dt / 2.0 + x / 2.0 * (dt * dt / 2.0 + (c - 1.0) / (w * w)),
+            v + a * dt + x / 2.0 * (dt - s / w),
+            a + x / 2.0 * (1.0 - c),
+            x / 2.0 * w * s,
+        )
+
+    def sample_many(self, ts):
+        """Vectorised sampling for plots and reports (allocates; not for the cycle)."""
+        import numpy as np
+
+        out = np.empty((len(ts), 4))
+        for k, t in enumerate(ts):
+            out[k] = self.sample(float(t))
+        return out
+
+    def __repr__(self) -> str:
+        return f"Profile({self.shape!r}, duration={self.duration:.6g}, segments={self.segments})"
+
+
+# ---------------------------------------------------------------- validation
+
+
+def _finite(name: str, x: float) -> float:
+    if not isinstance(x, (int, float)) or isinstance(x, bool) or not math.isfinite(x):
+        raise ValueError(f"{name} must be a finite number, got {x!r}")
+    return float(x)
+
+
+def _positive(name: str, x: float | None, why: str = "") -> float:
+    if x is None:
+        raise ValueError(f"{name} is required{why}")
+    x = _finite(name, x)
+    if x <= 0.0:
+        raise ValueError(f"{name} must be > 0{why}, got {x!r}")
+    return x
+
+
+def _check_state(name: str, s: State) -> None:
+    _finite(f"{name}.p", s.p)
+    _finite(f"{name}.v", s.v)
+    _finite(f"{name}.a", s.a)
+
+
+class _Ramp:
+    """Ramp law for one plan: duration factor k, position coefficient c, jerk j."""
+
+    __slots__ = ("k", "c", "j", "split", "kind")
+
+    def __init__(self, base: str, limits: Limits, amax: float) -> None:
+        self.k, self.c, self.split = _BASE[base]
+        self.kind = _SIN2 if base == "sin2" else _LINEAR
+        if base == "trapezoid":
+            self.j = math.inf
+        elif limits.j is not None:
+            self.j = _positive("Limits.j", limits.j)
+        elif limits.ramp_time is not None:
+            self.j = amax / _positive("Limits.ramp_time", limits.ramp_time)
+        else:
+            raise ValueError(f"Limits.j (or Limits.ramp_time) is required for shape {base!r}")
+
+    def time(self, da: float) -> float:
+        return 0.0 if self.k == 0.0 else self.k * abs(da) / self.j
+
+    def dv(self, a_from: float, a_to: float) -> float:
+        """Velocity gained over a ramp a_from -> a_to (any sign)."""
+        return 0.0 if self.k == 0.0 else (a_from + a_to) / 2.0 * self.time(a_to - a_from)
+
+
+def _ramp_dp(v: float, a: float, da: float, tau: float, c: float) -> float:
+    return tau * (v + tau * (a / 2.0 + da * c))
+
+
+# ---------------------------------------------------------------- UDDU family
+
+
+@dataclass(slots=True)
+class _Cand:
+    a1: float
+    t2: float
+    t4: float
+    a2: float
+    t6: float
+    duration: float
+
+
+def _down_part(r: _Ramp, v: float, a1: float, vf: float, dmax: float):
+    """From (v, a1) ramp down to A2 (>= -dmax), hold, ramp up to 0 at vf.
+
+    Returns (a2, t6) or None when the velocity cannot be reached this way.
+    """
+    dv = vf - v
+    if r.k == 0.0:  # trapezoid: only the hold at -dmax brakes
+        if dv > 0.0:
+            return None
+        return -dmax, -dv / dmax
+    h = r.j * dv / r.k
+    s = a1 * a1 / 2.0 - h
+    if s < 0.0:
+        if s < -1e-12 * (a1 * a1 + abs(h)):
+            return None
+        s = 0.0  # rounding at the boundary A2 = 0, where the scans start
+    a2 = -math.sqrt(s)
+    if a2 > a1 + 1e-12 * (abs(a1) + 1.0):
+        return None
+    if a2 < -dmax:
+        a2 = -dmax
+        t6 = (dv - r.k * (a1 * a1 - 2.0 * dmax * dmax) / (2.0 * r.j)) / a2
+        return a2, max(t6, 0.0)
+    return min(a2, a1), 0.0
+
+
+def _integrate(r: _Ramp, v0: float, a0: float, a1: float, t2: float, t4: float, a2: float, t6: float, emit=None):
+    """Walk the UDDU phases from p = 0; returns (p, v, duration). emit(kind, dur, p, v, a, x)."""
+    p, v, t = 0.0, v0, 0.0
+
+    def ramp(p, v, a_from, a_to):
+        tau = r.time(a_to - a_from)
+        if tau > 0.0:
+            da = a_to - a_from
+            if emit is not None:
+                if r.kind == _SIN2:
+                    emit(_SIN2, tau, p, v, a_from, da)
+                else:
+                    emit(_LINEAR, tau, p, v, a_from, da / tau)
+            p += _ramp_dp(v, a_from, da, tau, r.c)
+            v += (a_from + a_to) / 2.0 * tau
+        return p, v, tau
+
+    def hold(p, v, a, dur):
+        if dur > 0.0:
+            if emit is not None:
+                emit(_LINEAR, dur, p, v, a, 0.0)
+            p += dur * (v + dur * a / 2.0)
+            v += a * dur
+        return p, v, dur
+
+    p, v, d = ramp(p, v, a0, a1)
+    t += d
+    p, v, d = hold(p, v, a1, t2)
+    t += d
+    if t4 > 0.0 or (r.split and a1 > 0.0 > a2):
+        p, v, d = ramp(p, v, a1, 0.0)
+        t += d
+        p, v, d = hold(p, v, 0.0, t4)
+        t += d
+        p, v, d = ramp(p, v, 0.0, a2)
+        t += d
+    else:
+        p, v, d = ramp(p, v, a1, a2)
+        t += d
+    p, v, d = hold(p, v, a2, t6)
+    t += d
+    p, v, d = ramp(p, v, a2, 0.0)
+    t += d
+    return p, v, t
+
+
+def _illinois(f: Callable[[float], float], lo: float, hi: float, flo: float, fhi: float) -> float:
+    """Root of f in [lo, hi] with f(lo), f(hi) of opposite sign (modified regula falsi)."""
+    side = 0
+    x = lo
+    for _ in range(200):
+        x = (lo * fhi - hi * flo) / (fhi - flo)
+        if not lo <= x <= hi:
+            x = 0.5 * (lo + hi)
+        fx = f(x)
+        if fx == 0.0 or hi - lo <= 4e-16 * max(abs(lo), abs(hi), 1e-300):
+            return x
+        if (fx > 0.0) == (fhi > 0.0):
+            hi, fhi = x, fx
+            if side == 1:
+                flo /= 2.0
+            side = 1
+        else:
+            lo, flo = x, fx
+            if side == -1:
+                fhi /= 2.0
+            side = -1
+    return x
+
+
+_GRID = 24
+
+
+def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: float, amax: float, dmax: float) -> list[_Cand]:
+    """All UDDU candidates (up frame) reaching (dist, vf, a=0) from (0, v0, a0)."""
+    out: list[_Cand] = []
+    k, j = r.k, r.j
+
+    def peak_v(a1: float, t2: float) -> float:
+        # velocity where the acceleration crosses zero after (a1, t2); a1 >= 0
+        return v0 + r.dv(a0, a1) + a1 * t2 + r.dv(a1, 0.0)
+
+    # -- cruise at v_max: reach v_max with a = 0, cruise, brake to vf
+    v_stop = v0 + r.dv(a0, 0.0)
+    if v_stop <= vmax * (1.0 + 1e-12):
+        if k == 0.0:
+            a1, t2 = amax, max((vmax - v0) / amax, 0.0)
+        else:
+            sq = j * (vmax - v0) / k + a0 * a0 / 2.0
+            a1 = math.sqrt(max(sq, 0.0))
+            t2 = 0.0
+            if a1 > amax:
+                a1 = amax
+                t2 = (vmax - v0 - k * (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax
+        if a1 < a0 and v_stop >= vmax - 1e-12 * vmax:
+            a1 = a0  # already at the speed limit (within rounding): just let a fall to 0
+        if a1 >= a0 - 1e-12 and t2 >= 0.0:
+            dn = _down_part(r, vmax, 0.0, vf, dmax)
+            if dn is not None:
+                a2, t6 = dn
+                p, _, t = _integrate(r, v0, a0, a1, t2, 0.0, a2, t6)
+                t4 = (dist - p) / vmax
+                if t4 >= 0.0:
+                    out.append(_Cand(a1, t2, t4, a2, t6, t + t4))
+
+    # -- no cruise: one free parameter, first A1 in [a0, amax], then hold1 at amax
+    def end_error(a1: float, t2: float) -> float | None:
+        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax)
+        if dn is None:
+            return None
+        p, _, _ = _integrate(r, v0, a0, a1, t2, 0.0, dn[0], dn[1])
+        return p - dist
+
+    def scan(f, lo: float, hi: float, make) -> None:
+        if not hi >= lo:
+            return
+        n = _GRID if hi > lo else 0
+        xs = [lo + (hi - lo) * i / n for i in range(n)] + [hi] if n else [lo]
+        prev_x = prev_f = None
+        for x in xs:
+            fx = f(x)
+            if fx is None:
+                prev_x = prev_f = None
+                continue
+            if fx == 0.0:
+                make(x)
+            elif prev_f is not None and (fx > 0.0) != (prev_f > 0.0):
+                make(_illinois(f, prev_x, x, prev_f, fx))
+            prev_x, prev_f = x, fx
+
+    def add(a1: float, t2: float) -> None:
+        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax)
+        if dn is None:
+            return
+        a2, t6 = dn
+        if a1 > 0.0 and peak_v(a1, t2) > vmax * (1.0 + 1e-9):
+            return
+        p, v, t = _integrate(r, v0, a0, a1, t2, 0.0, a2, t6)
+        tol = 1e-9 * max(1.0, abs(dist), abs(v0), abs(vf))
+        if abs(p - dist) <= tol and abs(v - vf) <= tol:
+            out.append(_Cand(a1, t2, 0.0, a2, t6, t))
+
+    # The down part exists only while it has velocity left to shed (A2 <= 0); the
+    # scans start at that boundary, or a root next to it would not be bracketed.
+    if k > 0.0:
+        hi = amax
+        if hi > 0.0 and peak_v(hi, 0.0) > vmax:
+            # largest A1 whose zero-crossing velocity stays within v_max
+            hi = math.sqrt(max((j * (vmax - v0) / k + a0 * a0 / 2.0), 0.0))
+        hi = min(hi, amax)
+        rhs = a0 * a0 / 2.0 + j * (vf - v0) / k  # feasible: A1^2 >= rhs
+        lo = max(a0, math.sqrt(rhs)) if rhs > 0.0 else a0
+        scan(lambda a1: end_error(a1, 0.0), lo, hi, lambda a1: add(a1, 0.0))
+    if amax >= a0 - 1e-12:
+        base = v0 + r.dv(a0, amax)
+        t2max = (vmax - r.dv(amax, 0.0) - base) / amax
+        lo = max(0.0, (vf - base - (k * amax * amax / (2.0 * j) if k else 0.0)) / amax)
+        scan(lambda t2: end_error(amax, t2), lo, t2max, lambda t2: add(amax, t2))
+    return out
+
+
+def _emit_collect(sign: float, p0: float, segs: list):
+    def emit(kind, dur, p, v, a, x):
+        segs.append((kind, dur, p0 + sign * p, sign * v, sign * a, sign * x))
+
+    return emit
+
+
+# ---------------------------------------------------------------- braking into the limits
+
+
+def _brake(r: _Ramp, start: State, vmax: float, alim: float, segs: list) -> State:
+    """Bring a start state that violates the limits back inside them (appends segments)."""
+    p, v, a = start.p, start.v, start.a
+    if abs(a) > alim:
+        tgt = math.copysign(alim, a)
+        tau = r.time(tgt - a)
+        if tau > 0.0:
+            segs.append((_LINEAR, tau, p, v, a, (tgt - a) / tau) if r.kind == _LINEAR else (_SIN2, tau, p, v, a, tgt - a))
+            p += _ramp_dp(v, a, tgt - a, tau, r.c)
+            v += (a + tgt) / 2.0 * tau
+        a = tgt
+    v_stop = v + r.dv(a, 0.0)
+    if abs(v_stop) > vmax or abs(v) > vmax:
+        target_v = math.copysign(vmax, v_stop if abs(v_stop) > vmax else v)
+        sub = _velocity_segments(r, State(p, v, a), target_v, alim, alim)
+        segs.extend(sub)
+        end = _end_of(sub, State(p, v, a))
+        p, v, a = end.p, end.v, 0.0
+    return State(p, v, a)
+
+
+def _seg_end(kind: int, dur: float, p: float, v: float, a: float, x: float) -> State:
+    """State at the end of one segment (x: jerk, or the acceleration change of a sin² ramp)."""
+    if kind == _LINEAR:
+        return State(p + dur * (v + dur * (a / 2.0 + dur * x / 6.0)), v + dur * (a + dur * x / 2.0), a + dur * x)
+    return State(p + v * dur + a * dur * dur / 2.0 + x * _SIN2_C * dur * dur, v + a * dur + x / 2.0 * dur, a + x)
+
+
+def _end_of(segs: list, s: State) -> State:
+    return _seg_end(*segs[-1]) if segs else s
+
+
+# ---------------------------------------------------------------- velocity changes
+
+
+def _velocity_segments(r: _Ramp, s: State, vt: float, amax: float, dmax: float) -> list:
+    """Time-optimal change from (v, a) to (vt, 0): ramp, hold, ramp (no position target)."""
+    v_stop = s.v + r.dv(s.a, 0.0)
+    sign = 1.0 if vt >= v_stop else -1.0
+    v0, a0, dv = sign * s.v, sign * s.a, sign * (vt - s.v)
+    # speeding up in the travel direction uses a, slowing down uses d
+    lim = amax if abs(vt) >= abs(s.v) else dmax
+    if r.k == 0.0:
+        a1, t2 = lim, max(dv / lim, 0.0)
+    else:
+        a1 = math.sqrt(max(r.j * dv / r.k + a0 * a0 / 2.0, 0.0))
+        t2 = 0.0
+        if a1 > lim:
+            a1 = lim
+            t2 = max((dv - r.k * (2.0 * lim * lim - a0 * a0) / (2.0 * r.j)) / lim, 0.0)
+    segs: list = []
+    emit = _emit_collect(sign, s.p, segs)
+    # reuse the UDDU walker with an empty down part: ramp a0->a1, hold, ramp a1->0
+    _integrate_velocity(r, v0, a0, a1, t2, emit)
+    return segs
+
+
+def _integrate_velocity(r: _Ramp, v0: float, a0: float, a1: float, t2: float, emit) -> None:
+    p, v = 0.0, v0
+    for a_from, a_to, hold in ((a0, a1, 0.0), (a1, a1, t2), (a1, 0.0, 0.0)):
+        if a_from == a_to:
+            if hold > 0.0:
+                emit(_LINEAR, hold, p, v, a_from, 0.0)
+                p += hold * (v + hold * a_from / 2.0)
+                v += a_from * hold
+            continue
+        tau = r.time(a_to - a_from)
+        if tau <= 0.0:
+            continue
+        da = a_to - a_from
+        emit(_SIN2 if r.kind == _SIN2 else _LINEAR, tau, p, v, a_from, da if r.kind == _SIN2 else da / tau)
+        p += _ramp_dp(v, a_from, da, tau, r.c)
+        v += (a_from + a_to) / 2.0 * tau
+
+
+# ---------------------------------------------------------------- WAGO time/path variants
+
+
+def _bell(kind_base: str, dur: float, p: float, v: float, dv: float, segs: list) -> tuple[float, float]:
+    """One ramp of total duration dur changing the velocity by dv, as a single bell."""
+    if dur <= 0.0 or dv == 0.0:
+        return p, v
+    if kind_base == "trapezoid":
+        a = dv / dur
+        segs.append((_LINEAR, dur, p, v, a, 0.0))
+        return p + dur * (v + dur * a / 2.0), v + dv
+    ap = 2.0 * dv / dur  # peak of a triangle or sin² bell of mean dv/dur
+    h = dur / 2.0
+    if kind_base == "jerk":
+        jj = ap / h
+        segs.append((_LINEAR, h, p, v, 0.0, jj))
+        p1 = p + h * (v + h * h * jj / 6.0)
+        v1 = v + ap * h / 2.0
+        segs.append((_LINEAR, h, p1, v1, ap, -jj))
+    else:
+        segs.append((_SIN2, h, p, v, 0.0, ap))
+        p1 = p + v * h + ap * _SIN2_C * h * h
+        v1 = v + ap * h / 2.0
+        segs.append((_SIN2, h, p1, v1, ap, -ap))
+    return p + (v + dv / 2.0) * dur, v + dv
+
+
+def _plan_timed(base: str, variant: str, start: State, target: State, limits: Limits, vmax: float) -> list:
+    if start.a != 0.0:
+        raise ValueError(f"State.a must be 0 at the start of a ramp time/path shape ({base}/{variant}), got {start.a!r}")
+    dist = target.p - start.p
+    v0, vf = start.v, target.v
+    if variant == "time":
+        tu = _positive("Limits.up_time", limits.up_time, " for ramp time shapes")
+        td = _positive("Limits.down_time", limits.down_time, " for ramp time shapes")
+    else:
+        su = _positive("Limits.up_path", limits.up_path, " for ramp path shapes")
+        sd = _positive("Limits.down_path", limits.down_path, " for ramp path shapes")
+        vt = math.copysign(vmax, dist if dist != 0.0 else 1.0)
+        # the path fixes the ramp time at full speed; shorter moves keep those times
+        tu = 2.0 * su / max(abs(v0 + vt), 1e-300)
+        td = 2.0 * sd / max(abs(vt + vf), 1e-300)
+    # ramps of fixed duration: distance = (v0+vp)/2*tu + (vp+vf)/2*td (+ cruise)
+    vp = (2.0 * dist - v0 * tu - vf * td) / (tu + td)
+    cruise = 0.0
+    if abs(vp) > vmax:
+        vp = math.copysign(vmax, vp)
+        cruise = (dist - (v0 + vp) / 2.0 * tu - (vp + vf) / 2.0 * td) / vp
+    segs: list = []
+    p, v = _bell(base, tu, start.p, v0, vp - v0, segs)
+    if cruise > 0.0:
+        segs.append((_LINEAR, cruise, p, v, 0.0, 0.0))
+        p += v * cruise
+    _bell(base, td, p, v, vf - vp, segs)
+    return segs
+
+
+# ---------------------------------------------------------------- public API
+
+
+def _common(shape: str, start: State, limits: Limits) -> tuple[str, str, float, float, float]:
+    if shape not in SHAPES:
+        raise ValueError(f"shape must be one of {', '.join(SHAPES)}; got {shape!r}")
+    base, _, variant = shape.partition("/")
+    _check_state("start", start)
+    vmax = _positive("Limits.v", limits.v)
+    amax = _positive("Limits.a", limits.a)
+    dmax = amax if limits.d is None else _positive("Limits.d", limits.d)
+    return base, variant, vmax, amax, dmax
+
+
+def plan(shape: str, start: State, target: State, limits: Limits) -> Profile:
+    """Plan a move from `start` to `target` (position and velocity, a = 0)."""
+    base, variant, vmax, amax, dmax = _common(shape, start, limits)
+    _check_state("target", target)
+    if target.a != 0.0:
+        raise ValueError(f"target.a must be 0 (the move ends in constant velocity), got {target.a!r}")
+    if abs(target.v) > vmax:
+        raise ValueError(f"target.v = {target.v!r} is outside the velocity limit +-{vmax!r} (Limits.v)")
+    if variant:
+        return Profile(shape, start, target, _plan_timed(base, variant, start, target, limits, vmax))
+
+    r = _Ramp(base, limits, max(amax, dmax))
+    segs: list = []
+    s = _brake(r, start, vmax, max(amax, dmax), segs)
+    best = None
+    # With a != d some moves (e.g. a run-up that must first back away) have no
+    # profile with the drive ramp at a and the braking ramp at d; they fall back to
+    # min(a, d) for both, which keeps every limit and always has a solution.
+    for a_lim, d_lim in ((amax, dmax), (min(amax, dmax), min(amax, dmax))):
+        for sign in (1.0, -1.0):
+            cands = _solve_up(r, sign * s.v, sign * s.a, sign * (target.p - s.p), sign * target.v, vmax, a_lim, d_lim)
+            for c in cands:
+                if best is None or c.duration < best[1].duration:
+                    best = (sign, c)
+        if best is not None or amax == dmax:
+            break
+    if best is None:  # pragma: no cover - the family always holds a solution inside the limits
+        raise ValueError(f"no profile found from {start} to {target} with {limits}")
+    sign, c = best
+    _integrate(r, sign * s.v, sign * s.a, c.a1, c.t2, c.t4, c.a2, c.t6, _emit_collect(sign, s.p, segs))
+    return Profile(shape, start, target, segs)
+
+
+def plan_velocity(shape: str, start: State, v_target: float, limits: Limits) -> Profile:
+    """Reach velocity `v_target` (with a = 0) as fast as the limits allow; then keep it."""
+    base, variant, vmax, amax, dmax = _common(shape, start, limits)
+    v_target = _finite("v_target", v_target)
+    if abs(v_target) > vmax:
+        raise ValueError(f"v_target = {v_target!r} is outside the velocity limit +-{vmax!r} (Limits.v)")
+    if variant:
+        if start.a != 0.0:
+            raise ValueError(f"State.a must be 0 at the start of a ramp time/path shape ({shape}), got {start.a!r}")
+        up = abs(v_target) >= abs(start.v)
+        if variant == "time":
+            dur = _positive("Limits.up_time" if up else "Limits.down_time", limits.up_time if up else limits.down_time)
+        else:
+            path = _positive("Limits.up_path" if up else "Limits.down_path", limits.up_path if up else limits.down_path)
+            dur = 2.0 * path / max(abs(start.v + v_target), 1e-300)
+        segs: list = []
+        _bell(base, dur, start.p, start.v, v_target - start.v, segs)
+        end = _end_of(segs, start) if segs else start
+        return Profile(shape, start, State(end.p, v_target), segs)
+    r = _Ramp(base, limits, max(amax, dmax))
+    segs = []
+    s = _brake(r, start, vmax, max(amax, dmax), segs)
+    segs.extend(_velocity_segments(r, s, v_target, amax, dmax))
+    end = _end_of(segs, start) if segs else start
+    return Profile(shape, start, State(end.p, v_target), segs)
