@@ -1,0 +1,34 @@
+"""`make bench`: figures printed as ratios against a reference measured in the same run.
+
+- profiles: jerk-limited planning time next to Ruckig's (same random requests), and the
+  duration ratio (time-optimality: must print 1.000000);
+- cycle: cost of one cycle of one axis in a move (median, microseconds), and simulated
+  seconds per wall-clock second for a 4-axis machine at T = 1 ms (reference: real time).
+
+Timings are printed, never asserted: they belong here, not in the unit tests.
+"""
+
+from __future__ import annotations
+
+import random
+import statistics
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from bench_cycle import bench_cycle  # noqa: E402
+from bench_profiles import bench_profiles  # noqa: E402
+
+
+def main() -> None:
+    random.seed(7)
+    print("axisline benchmarks (figures, not pass/fail)\n")
+    bench_profiles()
+    print()
+    bench_cycle()
+
+
+if __name__ == "__main__":
+    main()
