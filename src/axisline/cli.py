@@ -1,0 +1,193 @@
+"""The `axisline` command: run, serve, check, plot.
+
+Exit codes: 0 the run completed; 1 a runtime fault (an axis went to ERROR_STOP, a job
+step failed); 2 a bad machine file (the message names the key, value and range).
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import sys
+from pathlib import Path
+from typing import Optional
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from .configerrors import ConfigError
+
+app = typer.Typer(add_completion=False, no_args_is_help=True, help="axisline: an open-source motion controller.")
+console = Console(stderr=True)
+out = Console()
+
+
+def _bad_file(e: ConfigError) -> typer.Exit:
+    console.print(f"[red]bad machine file[/red] {e.source}:")
+    for p in e.problems:
+        console.print(f"  - {p}", markup=False)
+    return typer.Exit(2)
+
+
+def _load(machine: Path, **kw):
+    from .machine import Machine
+
+    try:
+        return Machine.from_file(machine, **kw)
+    except ConfigError as e:
+        raise _bad_file(e) from None
+
+
+def _endpoint(value: str | None, option: str) -> tuple[str, int] | None:
+    if value is None:
+        return None
+    host, sep, port = value.rpartition(":")
+    if not sep:
+        host, port = "127.0.0.1", value
+    try:
+        p = int(port)
+        if not 0 <= p <= 65535:
+            raise ValueError
+    except ValueError:
+        console.print(f"[red]{option}[/red] = {value!r}: expected HOST:PORT with a port in 0..65535")
+        raise typer.Exit(2) from None
+    return (host or "127.0.0.1", p)
+
+
+@app.command()
+def run(
+    machine: Path = typer.Argument(..., help="machine file (TOML)"),
+    duration: Optional[float] = typer.Option(None, "--duration", help="longest simulated time, s (default: the file's)"),
+    seed: Optional[int] = typer.Option(None, "--seed", help="seed of the simulated plant (default: the file's)"),
+    json_out: Optional[Path] = typer.Option(None, "--json", help="write the run summary as JSON"),
+    trace_out: Optional[Path] = typer.Option(None, "--trace", help="write the scope trace (.npz; .csv beside it)"),
+    plot_dir: Optional[Path] = typer.Option(None, "--plot", help="write plots (PNG) into this folder"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+) -> None:
+    """Run the machine on the embedded simulated plant (as fast as possible, exact time)."""
+    if duration is not None and not duration > 0:
+        console.print(f"[red]--duration[/red] = {duration}: must be > 0")
+        raise typer.Exit(2)
+    m = _load(machine, seed=seed)
+    if quiet or not sys.stderr.isatty():
+        result = m.run(duration)
+    else:
+        with Progress(TextColumn("[bold]simulating"), BarColumn(), TextColumn("{task.percentage:>5.1f} %"), TimeElapsedColumn(), console=console, transient=True) as bar:
+            task = bar.add_task("run", total=1.0)
+            result = m.run(duration, progress=lambda f: bar.update(task, completed=f))
+    summary = m.summary(result)
+    if trace_out is not None and m.trace is not None:
+        trace_out.parent.mkdir(parents=True, exist_ok=True)
+        m.trace.save_npz(trace_out)
+        m.trace.save_csv(trace_out.with_suffix(".csv"))
+        summary["trace"]["file"] = str(trace_out)
+    if plot_dir is not None and m.trace is not None:
+        from .report.plots import plot_trace
+
+        files = plot_trace(m.trace.data(), m.trace.units, plot_dir, title=m.config.machine.name)
+        summary["plots"] = [str(f) for f in files]
+    if json_out is not None:
+        from .kernel import atomic_write_text
+
+        json_out.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write_text(json_out, json.dumps(summary, indent=2) + "\n")
+    _print_summary(summary)
+    raise typer.Exit(0 if result.completed else 1)
+
+
+def _print_summary(s: dict) -> None:
+    t = Table(title=f"{s['machine']}: {s['simulated_s']:.3f} s simulated in {s['wall_s']:.2f} s ({s['realtime_factor']:.0f}x real time)")
+    for col in ("axis", "state", "position", "max following error", "max speed"):
+        t.add_column(col)
+    for name, a in s["axes"].items():
+        t.add_row(name, a["state"], f"{a['position']:.4f} {a['unit']}", f"{a['max_following_error']:.4g} {a['unit']}", f"{a['max_speed']:.4g} {a['unit']}/s")
+    out.print(t)
+    job = s["job"]
+    out.print(f"job: {'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s), {len(job['events'])} command(s)")
+    for f in s["faults"]:
+        out.print(f"[red]fault[/red] {f}", markup=True)
+    out.print("[green]completed[/green]" if s["completed"] else "[red]not completed[/red]")
+
+
+@app.command()
+def check(machine: Path = typer.Argument(..., help="machine file (TOML)")) -> None:
+    """Validate a machine file: exit 0 if it is usable, 2 with the bad keys named."""
+    m = _load(machine)
+    out.print(f"{machine}: OK ({len(m.units)} axes, cycle {m.clock.period_us} us, job of {len(m.config.job.steps)} steps)")
+
+
+@app.command()
+def plot(
+    trace: Path = typer.Argument(..., help="trace file written by run --trace (.npz)"),
+    out_dir: Optional[Path] = typer.Option(None, "--out", help="folder for the PNGs (default: beside the trace)"),
+) -> None:
+    """Draw position, velocity, acceleration, jerk and following error of each axis (PNG)."""
+    from .kernel import Trace
+    from .report.plots import plot_trace
+
+    try:
+        rec = Trace.load_npz(trace)
+    except (OSError, ValueError, KeyError) as e:
+        console.print(f"[red]cannot read trace[/red] {trace}: {e}")
+        raise typer.Exit(2) from None
+    files = plot_trace(rec.data(), rec.units, out_dir or trace.with_suffix(""), title=trace.stem)
+    for f in files:
+        out.print(str(f))
+    if not files:
+        console.print("no axis channels in this trace")
+        raise typer.Exit(1)
+
+
+@app.command()
+def serve(
+    machine: Path = typer.Argument(..., help="machine file (TOML)"),
+    modbus: Optional[str] = typer.Option(None, "--modbus", help="Modbus TCP endpoint HOST:PORT"),
+    serial_tcp: Optional[str] = typer.Option(None, "--serial-tcp", help="serial protocol over TCP HOST:PORT"),
+    http: Optional[str] = typer.Option(None, "--http", help="web HMI HOST:PORT"),
+    duration: Optional[float] = typer.Option(None, "--duration", help="stop by itself after this many seconds"),
+) -> None:
+    """Run the machine on the wall clock (soft real time) with its protocol endpoints.
+
+    Ctrl-C or SIGTERM stops the axes with their stop ramps, saves what must persist and exits 0.
+    """
+    from .machine import Machine
+    from .kernel import WallClock
+    from .config import load_machine_file
+
+    try:
+        cfg = load_machine_file(machine)
+    except ConfigError as e:
+        raise _bad_file(e) from None
+    endpoints = {"--modbus": _endpoint(modbus, "--modbus"), "--serial-tcp": _endpoint(serial_tcp, "--serial-tcp"), "--http": _endpoint(http, "--http")}
+    offered: set[str] = set()  # the personality issues add their endpoints
+    for opt, ep in endpoints.items():
+        if ep is not None and opt not in offered:
+            console.print(f"[red]{opt}[/red]: this machine (personality {cfg.machine.personality!r}) offers no such endpoint")
+            raise typer.Exit(2)
+    m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(machine))
+
+    def _stop(signum, frame):  # runs between cycles: the scheduler checks the flag
+        m.scheduler.stop()
+
+    signal.signal(signal.SIGINT, _stop)
+    signal.signal(signal.SIGTERM, _stop)
+    limit = None if duration is None else max(1, round(duration / m.period))
+    console.print(f"serving {machine} on the wall clock, cycle {m.clock.period_us} us; Ctrl-C stops")
+    print("ready", flush=True)
+    n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
+    rested = m.stop_all()
+    saved = m.persist()
+    late = getattr(m.clock, "late_max", 0.0)
+    console.print(f"stopped after {n} cycles; axes {'at rest' if rested else 'NOT at rest'}; saved {len(saved)} file(s); worst lateness {late * 1e3:.2f} ms")
+    print("stopped", flush=True)
+    raise typer.Exit(0 if rested else 1)
+
+
+def main() -> None:  # pragma: no cover
+    app()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,114 @@
+"""The machine file (TOML): every field typed, ranged and explained.
+
+    [machine]            name, cycle period, seed, run duration
+    [[axis]]             one table per axis: the axis parameters (motion.axis.AxisConfig)
+      [axis.drive]       type = "servo" | "stepper" and the drive model's parameters
+      [axis.encoder]     optional: an incremental encoder on the motor (counts -> actual position)
+    [job]                the scripted main job: repeat, [[job.steps]]
+    [trace]              the scope: capacity, decimation, channels
+
+An unknown key, a wrong type or an out-of-range value is a ConfigError whose lines
+name the key, the value and the allowed range.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from .configerrors import ConfigError, explain
+from .job import JobConfig
+from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
+from .motion.axis import AxisConfig
+from .plant.config import EncoderConfig, ServoDriveConfig, StepperDriveConfig
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class MachineSection(_Strict):
+    name: str = Field("axisline machine", min_length=1, max_length=200, description="shown in reports")
+    cycle_us: int = Field(1000, ge=MIN_PERIOD_US, le=MAX_PERIOD_US, description="cycle period T in microseconds")
+    seed: int = Field(0, ge=0, le=2**63 - 1, description="seed of the simulated plant's randomness")
+    duration: float = Field(10.0, gt=0.0, le=7 * 86400.0, description="longest simulated run, seconds")
+    personality: Literal["none"] = Field("none", description="device personality (the device issues add theirs)")
+
+
+class ServoEntry(ServoDriveConfig):
+    type: Literal["servo"] = "servo"
+
+    def build(self):
+        return ServoDriveConfig.model_validate(self.model_dump(exclude={"type"})).build()
+
+
+class StepperEntry(StepperDriveConfig):
+    type: Literal["stepper"] = "stepper"
+
+    def build(self):
+        return StepperDriveConfig.model_validate(self.model_dump(exclude={"type"})).build()
+
+
+DriveEntry = Annotated[Union[ServoEntry, StepperEntry], Field(discriminator="type")]
+
+
+class AxisEntry(AxisConfig):
+    """An axis with the drive and encoder of the simulated plant behind it."""
+
+    drive: DriveEntry = Field(default_factory=ServoEntry, description="the drive model")
+    encoder: EncoderConfig | None = Field(None, description="incremental encoder; none: actual = drive position")
+
+
+class TraceConfig(_Strict):
+    enabled: bool = True
+    capacity: int = Field(600_000, ge=1, le=50_000_000, description="samples kept")
+    decimation: int = Field(1, ge=1, le=10_000, description="record every n-th cycle")
+    mode: Literal["linear", "ring"] = Field("linear", description="linear: stop when full; ring: keep the newest")
+    channels: list[str] | Literal["all"] = Field("all", description="axis.signal names, or all")
+
+
+class MachineConfig(_Strict):
+    machine: MachineSection = Field(default_factory=MachineSection)
+    axis: list[AxisEntry] = Field(default_factory=list, max_length=64)
+    job: JobConfig = Field(default_factory=JobConfig)
+    trace: TraceConfig = Field(default_factory=TraceConfig)
+
+    @model_validator(mode="after")
+    def _cross_checks(self) -> "MachineConfig":
+        names = [a.name for a in self.axis]
+        for n in names:
+            if names.count(n) > 1:
+                raise ValueError(f"axis name {n!r} is used twice")
+        for i, step in enumerate(self.job.steps):
+            if step.command is not None and step.axis not in names:
+                raise ValueError(f"job.steps[{i}].axis = {step.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")
+            if step.command is None and step.dwell is None:
+                raise ValueError(f"job.steps[{i}]: a step needs a command or a dwell")
+            try:
+                step.arguments()
+            except ValueError as e:
+                raise ValueError(f"job.steps[{i}]: {e}") from None
+        return self
+
+
+def parse_machine(data: dict, source: str = "<machine>") -> MachineConfig:
+    try:
+        return MachineConfig.model_validate(data)
+    except ValidationError as err:
+        raise explain(err, MachineConfig, source) from None
+
+
+def load_machine_file(path: str | Path) -> MachineConfig:
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as e:
+        raise ConfigError(str(p), [f"cannot read the machine file: {e.strerror}"]) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise ConfigError(str(p), [f"TOML syntax: {e}"]) from None
+    return parse_machine(data, str(p))

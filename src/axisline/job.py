@@ -1,0 +1,143 @@
+"""The scripted job of a machine file: a sequence of axis commands, dwells and waits.
+
+It runs in the LOGIC stage, so every command it gives takes effect at a cycle
+boundary exactly as a command from a fieldbus would, and a run is reproducible to
+the cycle. A step either waits for its command to be done ("done"), or lets the
+next step start in the following cycle ("none", for moves on several axes at once).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+# axis commands a job step may give, with the keyword arguments each takes
+COMMANDS: dict[str, tuple[str, ...]] = {
+    "power": ("on",),
+    "move_absolute": ("position", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode", "direction"),
+    "move_relative": ("distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode"),
+    "move_additive": ("distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode"),
+    "move_velocity": ("velocity", "acceleration", "deceleration", "jerk", "buffer_mode"),
+    "halt": ("deceleration",),
+    "stop": ("deceleration",),
+    "stop_release": (),
+    "set_position": ("position", "relative"),
+    "jog": ("direction",),
+    "reset": (),
+}
+
+
+class JobStep(BaseModel):
+    """One step: an axis command, or a dwell when `dwell` is given without a command."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    axis: str | None = Field(None, description="axis the command goes to")
+    command: Literal[tuple(COMMANDS)] | None = Field(None, description="axis command")  # type: ignore[valid-type]
+    wait: Literal["done", "none"] = Field("done", description="wait for the command to be done before the next step")
+    dwell: float | None = Field(None, ge=0.0, le=86400.0, description="seconds to wait (after the command, if any)")
+    on: bool | None = None
+    position: float | None = None
+    distance: float | None = None
+    velocity: float | None = None
+    acceleration: float | None = Field(None, gt=0.0)
+    deceleration: float | None = Field(None, gt=0.0)
+    jerk: float | None = Field(None, gt=0.0)
+    buffer_mode: Literal["aborting", "buffered"] | None = None
+    direction: Literal["shortest", "positive", "negative", "current", -1, 0, 1] | None = None
+    relative: bool | None = None
+
+    def arguments(self) -> dict[str, Any]:
+        """Keyword arguments for the axis command (only those given)."""
+        allowed = COMMANDS[self.command] if self.command else ()
+        given = {k: getattr(self, k) for k in allowed if getattr(self, k) is not None}
+        extra = [
+            k
+            for k in ("on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode", "direction", "relative")
+            if getattr(self, k) is not None and k not in allowed
+        ]
+        if extra:
+            raise ValueError(f"job step {self.command!r} does not take {', '.join(extra)} (takes: {', '.join(allowed) or 'nothing'})")
+        return given
+
+
+class JobConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    repeat: int = Field(1, ge=1, le=1_000_000, description="how many times the steps run")
+    steps: list[JobStep] = Field(default_factory=list)
+
+
+@dataclass
+class JobEvent:
+    t: float
+    step: int
+    text: str
+
+
+@dataclass
+class JobRunner:
+    """Executes a JobConfig against the machine's axes, one decision per cycle."""
+
+    config: JobConfig
+    period: float
+    issue: Any  # callable(axis, command, kwargs) -> handle; the machine's command path
+    index: int = 0
+    round: int = 0
+    finished: bool = False
+    failed: str | None = None
+    events: list[JobEvent] = field(default_factory=list)
+    _started: bool = False
+    _handle: Any = None
+    _dwell_until: int | None = None
+
+    def __post_init__(self) -> None:
+        if not self.config.steps:
+            self.finished = True
+
+    def _fail(self, cycle: int, text: str) -> None:
+        self.failed = f"step {self.index + 1}: {text}"
+        self.events.append(JobEvent(cycle * self.period, self.index, self.failed))
+        self.finished = True
+
+    def tick(self, cycle: int) -> None:
+        """Advance the job; at most one new command per cycle."""
+        if self.finished:
+            return
+        step = self.config.steps[self.index]
+        if not self._started:
+            self._started = True
+            if step.command is not None:
+                h = self.issue(step.axis, step.command, step.arguments())
+                self.events.append(JobEvent(cycle * self.period, self.index, f"{step.axis}.{step.command}"))
+                if getattr(h, "error", False):  # rejected at once
+                    self._fail(cycle, f"{step.axis}.{step.command}: error {h.error_id}: {h.error_text}")
+                    return
+                self._handle = h if step.wait == "done" else None
+        h = self._handle
+        if h is not None:
+            if getattr(h, "error", False):
+                self._fail(cycle, f"{step.axis}.{step.command}: error {h.error_id}: {h.error_text}")
+                return
+            if getattr(h, "aborted", False):
+                self._fail(cycle, f"{step.axis}.{step.command} was aborted")
+                return
+            # a velocity command is "done" for the job once it runs at its velocity
+            if not (getattr(h, "done", False) or getattr(h, "in_velocity", False)):
+                return
+            self._handle = None
+        if step.dwell:
+            if self._dwell_until is None:
+                self._dwell_until = cycle + round(step.dwell / self.period)
+            if cycle < self._dwell_until:
+                return
+        self._started = False
+        self._dwell_until = None
+        self.index += 1
+        if self.index >= len(self.config.steps):
+            self.round += 1
+            self.index = 0
+            if self.round >= self.config.repeat:
+                self.finished = True

@@ -1,0 +1,318 @@
+"""The Machine: a machine file turned into axes, plant, scheduler, job and scope.
+
+One cycle (period T) runs the stages of kernel.scheduler in order:
+
+    INPUTS         encoder counts -> actual position of each axis
+    LOGIC          the job (and, later, a device personality)
+    SETPOINTS      each axis samples its profile / sync source
+    POSITION_LOOP  each axis: Kv, feed-forward, following-error monitoring
+    ACTUATE        drive commands, then the plant advances by T
+    RECORD         the scope
+
+The same code runs on the simulated clock (`run`, as fast as possible, exact time)
+and on the wall clock (`serve`, soft real time).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from .config import AxisEntry, MachineConfig, load_machine_file
+from .configerrors import ConfigError
+from .job import JobRunner
+from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace, WallClock
+from .motion.axis import Axis, AxisState
+from .plant.drives import ServoDrive, StepperDrive
+
+# states in which an axis is not producing motion
+_IDLE = {AxisState.STANDSTILL, AxisState.DISABLED, AxisState.ERROR_STOP}
+
+
+@dataclass
+class AxisUnit:
+    """An axis with its drive and (optional) encoder: the controller and the plant side."""
+
+    axis: Axis
+    drive: Any
+    encoder: Any
+    config: AxisEntry
+    actual_position: float = 0.0
+    velocity_output: float = 0.0
+    max_following_error: float = 0.0
+    max_speed: float = 0.0
+
+    def sample(self, cycle: int) -> None:
+        if self.encoder is not None:
+            counts = self.encoder.sample()
+            self.actual_position = counts / self.encoder.counts_per_unit
+        else:
+            self.actual_position = self.drive.position
+
+    def setpoint(self, cycle: int) -> None:
+        self.axis.update_setpoint(cycle)
+
+    def loop(self, cycle: int) -> None:
+        ax = self.axis
+        self.velocity_output = ax.position_loop(self.actual_position, self.drive.velocity)
+        fe = abs(ax.following_error)
+        if fe > self.max_following_error:
+            self.max_following_error = fe
+        sp = abs(self.drive.velocity)
+        if sp > self.max_speed:
+            self.max_speed = sp
+
+
+@dataclass
+class RunResult:
+    cycles: int
+    simulated_s: float
+    wall_s: float
+    completed: bool
+    faults: list[str] = field(default_factory=list)
+
+
+class Machine:
+    """Everything a machine file describes, wired into one cycle."""
+
+    def __init__(self, config: MachineConfig, *, seed: int | None = None, clock: Clock | None = None, source: str = "") -> None:
+        self.config = config
+        self.source = source
+        self.seed = config.machine.seed if seed is None else seed
+        self.rng = np.random.default_rng(self.seed)
+        period_us = config.machine.cycle_us
+        self.clock = clock if clock is not None else SimulatedClock(period_us)
+        self.period = self.clock.period
+        self.scheduler = Scheduler(self.clock)
+        self.commands = self.scheduler.commands
+        self.units: dict[str, AxisUnit] = {}
+        self.faults: list[str] = []
+        for entry in config.axis:
+            self._add_axis(entry)
+        self.job = JobRunner(config.job, self.period, self._issue)
+        self.scheduler.add_task("job", self.job.tick, Stage.LOGIC)
+        self.scheduler.add_task("faults", self._watch_faults, Stage.RECORD)
+        self.trace: Trace | None = None
+        if config.trace.enabled:
+            self.trace = self._make_trace()
+            self.scheduler.add_task("scope", self.trace.record, Stage.RECORD)
+
+    # -- construction ---------------------------------------------------------------
+
+    @classmethod
+    def from_file(cls, path: str | Path, *, seed: int | None = None, clock: Clock | None = None) -> "Machine":
+        return cls(load_machine_file(path), seed=seed, clock=clock, source=str(path))
+
+    def _add_axis(self, entry: AxisEntry) -> None:
+        axis_cfg = entry.model_dump(exclude={"drive", "encoder"})
+        from .motion.axis import AxisConfig
+
+        axis = Axis(AxisConfig.model_validate(axis_cfg), self.period)
+        drive = entry.drive.build()
+        encoder = entry.encoder.build(drive) if entry.encoder is not None else None
+        unit = AxisUnit(axis, drive, encoder, entry)
+        unit.actual_position = drive.position
+        name = entry.name
+        self.units[name] = unit
+        s = self.scheduler
+        s.add_task(f"{name}.inputs", unit.sample, Stage.INPUTS)
+        s.add_task(f"{name}.setpoint", unit.setpoint, Stage.SETPOINTS)
+        s.add_task(f"{name}.loop", unit.loop, Stage.POSITION_LOOP)
+        s.add_task(f"{name}.actuate", self._actuator(unit), Stage.ACTUATE)
+
+    def _actuator(self, unit: AxisUnit) -> Callable[[int], None]:
+        axis, drive, dt = unit.axis, unit.drive, self.period
+        if isinstance(drive, StepperDrive):
+            # open loop: the pulse output follows the set point, the motor follows the pulses
+            def actuate(cycle: int) -> None:
+                drive.enable(axis.state is not AxisState.DISABLED)
+                drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
+                drive.step(dt)
+
+        else:
+
+            def actuate(cycle: int) -> None:
+                drive.enable(axis.state is not AxisState.DISABLED)
+                drive.command_velocity(unit.velocity_output)
+                drive.step(dt)
+
+        return actuate
+
+    def _make_trace(self) -> Trace:
+        tc = self.config.trace
+        tr = Trace(tc.capacity, decimation=tc.decimation, mode=tc.mode, period_us=self.clock.period_us)
+        available: dict[str, tuple[Callable[[], Any], str, type]] = {}
+        for name, u in self.units.items():
+            ax, dr, unit = u.axis, u.drive, u.config.unit
+            sig = {
+                "command_position": (lambda ax=ax: ax.command_position, unit, float),
+                "actual_position": (lambda u=u: u.actual_position, unit, float),
+                "command_velocity": (lambda ax=ax: ax.command_velocity, f"{unit}/s", float),
+                "actual_velocity": (lambda dr=dr: dr.velocity, f"{unit}/s", float),
+                "command_acceleration": (lambda ax=ax: ax.command_acceleration, f"{unit}/s^2", float),
+                "actual_acceleration": (lambda dr=dr: dr.acceleration, f"{unit}/s^2", float),
+                "command_jerk": (lambda ax=ax: ax.command_jerk, f"{unit}/s^3", float),
+                "following_error": (lambda ax=ax: ax.following_error, unit, float),
+                "velocity_output": (lambda u=u: u.velocity_output, f"{unit}/s", float),
+                "state": (lambda ax=ax: int(_state_code(ax.state)), "", int),
+                "enabled": (lambda dr=dr: bool(dr.enabled), "", bool),
+            }
+            for k, v in sig.items():
+                available[f"{name}.{k}"] = v
+        wanted = list(available) if tc.channels == "all" else tc.channels
+        unknown = [c for c in wanted if c not in available]
+        if unknown:
+            raise ConfigError(self.source or "<machine>", [f"trace.channels: unknown channel {c!r} (available: {', '.join(available)})" for c in unknown])
+        for c in wanted:
+            getter, unit, kind = available[c]
+            tr.add_channel(c, getter, unit=unit, kind=kind)
+        return tr
+
+    # -- commands -----------------------------------------------------------------------
+
+    def axis(self, name: str) -> Axis:
+        return self.units[name].axis
+
+    @property
+    def axes(self) -> dict[str, Axis]:
+        return {n: u.axis for n, u in self.units.items()}
+
+    def _issue(self, axis: str, command: str, kwargs: dict[str, Any]) -> Any:
+        """Give an axis command from inside the cycle (job, personality)."""
+        ax = self.units[axis].axis
+        return getattr(ax, command)(**_axis_kwargs(command, kwargs))
+
+    def submit(self, axis: str, command: str, **kwargs: Any):
+        """Give an axis command from outside (CLI, fieldbus, HMI): applied at the next cycle boundary."""
+        return self.commands.submit(self._issue, axis, command, kwargs)
+
+    # -- running ------------------------------------------------------------------------
+
+    def _watch_faults(self, cycle: int) -> None:
+        for name, u in self.units.items():
+            ax = u.axis
+            if ax.state is AxisState.ERROR_STOP and getattr(ax, "_reported", None) != ax.error_text:
+                ax._reported = ax.error_text  # type: ignore[attr-defined]
+                self.faults.append(f"t={cycle * self.period:.4f} s axis {name}: error {ax.error_id}: {ax.error_text}")
+        if self.job.failed and self.job.failed not in self.faults:
+            self.faults.append(f"job: {self.job.failed}")
+
+    def at_rest(self) -> bool:
+        """Every set point at rest and every motor settled (the loop has pulled in the lag)."""
+        return all(
+            u.axis.state in _IDLE
+            and u.axis.command_velocity == 0.0
+            and abs(u.drive.velocity) <= 1e-4 * u.config.v_max
+            for u in self.units.values()
+        )
+
+    def run(self, duration: float | None = None, progress: Callable[[float], None] | None = None, until_job_done: bool = True) -> RunResult:
+        """Simulate: run until the job is done and every axis is at rest, or `duration` seconds."""
+        limit = self.config.machine.duration if duration is None else duration
+        cycles = max(1, round(limit / self.period))
+        start_cycle = self.clock.cycle
+        t0 = time.perf_counter()
+        every = max(1, cycles // 200)
+        completed = False
+        s = self.scheduler
+        for i in range(cycles):
+            s.run_cycle()
+            if until_job_done and self.job.finished and self.at_rest() and self.config.job.steps:
+                completed = True
+                break
+            if progress is not None and i % every == 0:
+                progress((i + 1) / cycles)
+        else:
+            completed = True
+        if progress is not None:
+            progress(1.0)
+        n = self.clock.cycle - start_cycle
+        return RunResult(n, n * self.period, time.perf_counter() - t0, completed and not self.faults and not self.job.failed, list(self.faults))
+
+    def stop_all(self, max_seconds: float = 30.0) -> bool:
+        """Stop every moving axis with its stop ramp; True when all came to rest."""
+        for u in self.units.values():
+            if u.axis.state not in _IDLE:
+                u.axis.stop()
+        ok = self.scheduler.run_until(self.at_rest_after_stop, max(1, round(max_seconds / self.period)))
+        for u in self.units.values():
+            if u.axis.state is AxisState.STOPPING:
+                u.axis.stop_release()
+        self.scheduler.run_cycle()
+        return ok
+
+    def at_rest_after_stop(self) -> bool:
+        return all(u.axis.command_velocity == 0.0 and u.axis.command_acceleration == 0.0 for u in self.units.values())
+
+    def persist(self) -> list[Path]:
+        """Save what must survive a restart (parameters, programs, curves): personalities add theirs."""
+        return []
+
+    # -- reporting ----------------------------------------------------------------------
+
+    def summary(self, result: RunResult) -> dict[str, Any]:
+        axes = {}
+        for name, u in self.units.items():
+            ax = u.axis
+            axes[name] = {
+                "state": ax.state.name,
+                "command_position": ax.command_position,
+                "actual_position": u.actual_position,
+                "position": ax.position,
+                "following_error": ax.following_error,
+                "max_following_error": u.max_following_error,
+                "max_speed": u.max_speed,
+                "unit": u.config.unit,
+                "error_id": ax.error_id,
+                "error_text": ax.error_text,
+            }
+        return {
+            "machine": self.config.machine.name,
+            "file": self.source,
+            "seed": self.seed,
+            "cycle_us": self.clock.period_us,
+            "cycles": result.cycles,
+            "simulated_s": result.simulated_s,
+            "wall_s": result.wall_s,
+            "realtime_factor": (result.simulated_s / result.wall_s) if result.wall_s > 0 else math.inf,
+            "completed": result.completed,
+            "faults": result.faults,
+            "job": {
+                "finished": self.job.finished,
+                "failed": self.job.failed,
+                "rounds": self.job.round,
+                "events": [{"t": e.t, "step": e.step + 1, "text": e.text} for e in self.job.events],
+            },
+            "axes": axes,
+            "trace": {"samples": len(self.trace), "channels": list(self.trace.channels)} if self.trace else None,
+        }
+
+
+def _state_code(state: AxisState) -> int:
+    return list(AxisState).index(state)
+
+
+_BUFFER = {"aborting": "ABORTING", "buffered": "BUFFERED"}
+_DIRECTION = {"shortest": "SHORTEST", "positive": "POSITIVE", "negative": "NEGATIVE", "current": "CURRENT"}
+
+
+def _axis_kwargs(command: str, kwargs: dict[str, Any]) -> dict[str, Any]:
+    """Machine-file words -> the axis API's enums."""
+    from .motion import axis as axis_mod
+
+    out = dict(kwargs)
+    if "buffer_mode" in out and isinstance(out["buffer_mode"], str):
+        out["buffer_mode"] = getattr(axis_mod.BufferMode, _BUFFER[out["buffer_mode"]])
+    if command == "move_absolute" and isinstance(out.get("direction"), str):
+        out["direction"] = getattr(axis_mod.Direction, _DIRECTION[out["direction"]])
+    return out
+
+
+def wall_clock_machine(path: str | Path) -> Machine:
+    cfg = load_machine_file(path)
+    return Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(path))
