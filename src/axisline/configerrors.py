@@ -33,28 +33,45 @@ def _key(loc: tuple[Any, ...]) -> str:
     return out or "(top level)"
 
 
-def _model_in(annotation: Any) -> type[BaseModel] | None:
-    """The pydantic model inside an annotation such as list[AxisConfig] | None."""
+def _models_in(annotation: Any) -> list[type[BaseModel]]:
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
+        return [annotation]
+    out: list[type[BaseModel]] = []
     for arg in typing.get_args(annotation):
-        found = _model_in(arg)
-        if found is not None:
-            return found
+        out.extend(_models_in(arg))
+    return out
+
+
+def _tag_of(model: type[BaseModel]) -> str | None:
+    """The value of a discriminator field such as type: Literal["servo"]."""
+    f = model.model_fields.get("type")
+    if f is not None and typing.get_origin(f.annotation) is typing.Literal:
+        return str(typing.get_args(f.annotation)[0])
     return None
 
 
-def _field(model: type[BaseModel], loc: tuple[Any, ...]):
-    """FieldInfo at a location, following nested models and lists; None if unknown."""
+def _walk(model: type[BaseModel], loc: tuple[Any, ...]):
+    """(FieldInfo, clean key parts) at a location, following nested models, lists and
+    discriminated unions (pydantic puts the union tag, e.g. 'servo', into the location)."""
     info = None
+    parts: list[Any] = []
+    candidates = [model]
     for part in loc:
         if isinstance(part, int):
+            parts.append(part)
             continue
-        if model is None or part not in model.model_fields:
-            return None
-        info = model.model_fields[part]
-        model = _model_in(info.annotation)
-    return info
+        tagged = [m for m in candidates if _tag_of(m) == part]
+        if tagged and len(candidates) > 1:
+            candidates = tagged
+            continue
+        owner = next((m for m in candidates if part in m.model_fields), None)
+        parts.append(part)
+        if owner is None:
+            info, candidates = None, []
+            continue
+        info = owner.model_fields[part]
+        candidates = _models_in(info.annotation)
+    return info, tuple(parts), candidates
 
 
 def allowed_range(info) -> str:
@@ -83,20 +100,22 @@ def explain(err: ValidationError, model: type[BaseModel], source: str) -> Config
     problems = []
     for e in err.errors():
         loc = tuple(e["loc"])
-        key = _key(loc)
+        info, clean, _ = _walk(model, loc)
+        key = _key(clean)
         if e["type"] == "extra_forbidden":
-            parent = _field(model, loc[:-1]) if len(loc) > 1 else None
-            owner = _model_in(parent.annotation) if parent is not None else model
-            known = ", ".join(owner.model_fields) if owner is not None else ""
+            owners = _walk(model, loc[:-1])[2] if len(loc) > 1 else [model]
+            known = ", ".join(dict.fromkeys(k for m in owners for k in m.model_fields))
             problems.append(f"{key}: unknown key (known keys here: {known})")
             continue
-        if e["type"] == "value_error" and not loc:  # a cross-check of the whole file
-            problems.append(str(e["msg"]).removeprefix("Value error, "))
+        if e["type"] == "value_error" and (not loc or isinstance(e.get("input"), dict)):
+            # a cross-check of a whole table: the message names its keys itself
+            text = str(e["msg"]).removeprefix("Value error, ")
+            problems.append(f"{key}: {text}" if loc else text)
             continue
         if e["type"] == "missing":
             problems.append(f"{key}: required key is missing")
             continue
-        rng = allowed_range(_field(model, loc))
+        rng = allowed_range(info)
         value = e.get("input")
         line = f"{key} = {value!r}: {e['msg']}"
         if rng:

@@ -228,7 +228,11 @@ class Machine:
             if progress is not None and i % every == 0:
                 progress((i + 1) / cycles)
         else:
-            completed = True
+            # A duration asked for explicitly is a complete run; the file's own limit
+            # reached with the job still running is a timeout.
+            completed = duration is not None or not self.config.job.steps or self.job.finished
+            if not completed:
+                self.faults.append(f"job not finished within machine.duration = {limit:g} s")
         if progress is not None:
             progress(1.0)
         n = self.clock.cycle - start_cycle
