@@ -30,6 +30,7 @@ from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace, WallClock
 from .motion.axis import Axis, AxisState
 from .plant.drives import ServoDrive, StepperDrive
 
+_ERROR_STOP = AxisState.ERROR_STOP
 # states in which an axis is not producing motion
 _IDLE = {AxisState.STANDSTILL, AxisState.DISABLED, AxisState.ERROR_STOP}
 
@@ -47,25 +48,23 @@ class AxisUnit:
     max_following_error: float = 0.0
     max_speed: float = 0.0
 
+    def __post_init__(self) -> None:
+        self._unit_per_count = 1.0 / self.encoder.counts_per_unit if self.encoder is not None else 0.0
+
     def sample(self, cycle: int) -> None:
         if self.encoder is not None:
-            counts = self.encoder.sample()
-            self.actual_position = counts / self.encoder.counts_per_unit
+            self.actual_position = self.encoder.sample() * self._unit_per_count
         else:
             self.actual_position = self.drive.position
 
-    def setpoint(self, cycle: int) -> None:
-        self.axis.update_setpoint(cycle)
-
     def loop(self, cycle: int) -> None:
-        ax = self.axis
-        self.velocity_output = ax.position_loop(self.actual_position, self.drive.velocity)
-        fe = abs(ax.following_error)
-        if fe > self.max_following_error:
-            self.max_following_error = fe
-        sp = abs(self.drive.velocity)
-        if sp > self.max_speed:
-            self.max_speed = sp
+        v = self.drive.velocity
+        self.velocity_output = self.axis.position_loop(self.actual_position, v)
+        fe = self.axis.following_error
+        if fe > self.max_following_error or -fe > self.max_following_error:
+            self.max_following_error = abs(fe)
+        if v > self.max_speed or -v > self.max_speed:
+            self.max_speed = abs(v)
 
 
 @dataclass
@@ -94,6 +93,8 @@ class Machine:
         self.faults: list[str] = []
         for entry in config.axis:
             self._add_axis(entry)
+        self._axes = tuple((n, u.axis) for n, u in self.units.items())
+        self._reported: dict[str, str] = {}
         self.job = JobRunner(config.job, self.period, self._issue)
         self.scheduler.add_task("job", self.job.tick, Stage.LOGIC)
         self.scheduler.add_task("faults", self._watch_faults, Stage.RECORD)
@@ -121,7 +122,7 @@ class Machine:
         self.units[name] = unit
         s = self.scheduler
         s.add_task(f"{name}.inputs", unit.sample, Stage.INPUTS)
-        s.add_task(f"{name}.setpoint", unit.setpoint, Stage.SETPOINTS)
+        s.add_task(f"{name}.setpoint", axis.update_setpoint, Stage.SETPOINTS)
         s.add_task(f"{name}.loop", unit.loop, Stage.POSITION_LOOP)
         s.add_task(f"{name}.actuate", self._actuator(unit), Stage.ACTUATE)
 
@@ -159,7 +160,7 @@ class Machine:
                 "command_jerk": (lambda ax=ax: ax.command_jerk, f"{unit}/s^3", float),
                 "following_error": (lambda ax=ax: ax.following_error, unit, float),
                 "velocity_output": (lambda u=u: u.velocity_output, f"{unit}/s", float),
-                "state": (lambda ax=ax: int(_state_code(ax.state)), "", int),
+                "state": (lambda ax=ax: _STATE_CODE[ax.state], "", int),
                 "enabled": (lambda dr=dr: bool(dr.enabled), "", bool),
             }
             for k, v in sig.items():
@@ -194,12 +195,15 @@ class Machine:
     # -- running ------------------------------------------------------------------------
 
     def _watch_faults(self, cycle: int) -> None:
-        for name, u in self.units.items():
-            ax = u.axis
-            if ax.state is AxisState.ERROR_STOP and getattr(ax, "_reported", None) != ax.error_text:
-                ax._reported = ax.error_text  # type: ignore[attr-defined]
-                self.faults.append(f"t={cycle * self.period:.4f} s axis {name}: error {ax.error_id}: {ax.error_text}")
-        if self.job.failed and self.job.failed not in self.faults:
+        for name, ax in self._axes:
+            if ax.state is _ERROR_STOP:
+                text = f"axis {name}: error {ax.error_id}: {ax.error_text}"
+                if self._reported.get(name) != text:
+                    self._reported[name] = text
+                    self.faults.append(f"t={cycle * self.period:.4f} s {text}")
+            elif name in self._reported:
+                del self._reported[name]  # reset: a later fault is reported again
+        if self.job.failed and f"job: {self.job.failed}" not in self.faults:
             self.faults.append(f"job: {self.job.failed}")
 
     def at_rest(self) -> bool:
@@ -297,8 +301,11 @@ class Machine:
         }
 
 
+_STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...
+
+
 def _state_code(state: AxisState) -> int:
-    return list(AxisState).index(state)
+    return _STATE_CODE[state]
 
 
 _BUFFER = {"aborting": "ABORTING", "buffered": "BUFFERED"}

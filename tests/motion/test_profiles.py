@@ -311,3 +311,17 @@ def test_start_above_the_speed_limit_brakes_back_inside_then_arrives():
 
 def test_shapes_listed():
     assert set(SHAPES) >= {"trapezoid", "jerk", "sin2", "jerk/time", "sin2/path", "trapezoid/time"}
+
+
+def test_sin2_replan_in_the_middle_of_a_ramp_keeps_the_speed_limit():
+    # an on-the-fly target change while a sin² ramp-up is about to reach v_max
+    lim = Limits(v=100.0, a=1000.0, j=20000.0)
+    first = plan("sin2", State(), State(500.0), lim)
+    t_mid = next(t for t in np.arange(0.0, first.duration, 1e-3) if first.sample(t)[1] > 90.0)
+    p, v, a, _ = first.sample(t_mid)
+    assert a > 100.0  # still accelerating
+    again = plan("sin2", State(p, v, a), State(800.0), lim)
+    s = dense_samples(again, 2000)
+    assert np.all(np.abs(s[:, 1]) <= 100.0 * (1 + REL))
+    assert np.all(np.abs(s[:, 3]) <= 20000.0 * (1 + REL))
+    assert_reaches(again, State(800.0), 800.0)

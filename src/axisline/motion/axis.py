@@ -914,6 +914,8 @@ class Axis:
         The set point is taken from the actual position, so a trip with a large following
         error does not make the axis lurch when it is enabled again. No effect in other states.
         """
+        if self._reset_cmd is not None:
+            return self._reset_cmd  # already waiting for the error ramp
         cmd = MotionCommand("reset")
         if self._state is AxisState.ERROR_STOP:
             if self._powered and self._profile is not None and not self._ended:
@@ -1104,9 +1106,10 @@ class Axis:
         if profile is None:
             self._v = self._a = self._j = 0.0
             return
-        if self._c0 is None:
-            self._c0 = cycle - 1  # a command issued before the first cycle
-        t = (cycle - self._c0) * self.period
+        c0 = self._c0
+        if c0 is None:
+            c0 = self._c0 = cycle - 1  # a command issued before the first cycle
+        t = (cycle - c0) * self.period
         p, self._v, self._a, self._j = profile.sample(t)
         self._p = p + self._shift
         if not self._ended and t >= profile.duration:
@@ -1114,8 +1117,8 @@ class Axis:
             self._profile_ended()
         elif self._queue and self._state is AxisState.CONTINUOUS_MOTION and self._ended:
             self._start_next()  # buffered behind a velocity command that is already in velocity
-        if self._watch:
-            self._watch_limits((cycle + 1 - self._c0) * self.period)
+        if self._watch:  # (a command started above re-based _c0 on this cycle)
+            self._watch_limits((cycle + 1 - (cycle if self._c0 is None else self._c0)) * self.period)
 
     def _profile_ended(self) -> None:
         """The profile reached its end in this cycle."""

@@ -125,6 +125,10 @@ class Profile:
         for kind, dur, p, v, a, x in segments:
             if dur <= 0.0:
                 continue
+            if kind == _SIN2 and dur < 1e-9:
+                # pi/dur would overflow the sin² closed form; over a nanosecond a linear
+                # ramp with the same acceleration change is the same curve to rounding
+                kind, x = _LINEAR, x / dur
             self._t0.append(t)
             self._p.append(p)
             self._v.append(v)
@@ -209,9 +213,11 @@ class _Ramp:
 
     __slots__ = ("k", "c", "j", "split", "kind")
 
-    def __init__(self, base: str, limits: Limits, amax: float) -> None:
+    def __init__(self, base: str, limits: Limits | None, amax: float) -> None:
         self.k, self.c, self.split = _BASE[base]
         self.kind = _SIN2 if base == "sin2" else _LINEAR
+        if limits is None:  # a copy whose j the caller sets (see linear())
+            return
         if base == "trapezoid":
             self.j = math.inf
         elif limits.j is not None:
@@ -227,6 +233,14 @@ class _Ramp:
     def dv(self, a_from: float, a_to: float) -> float:
         """Velocity gained over a ramp a_from -> a_to (any sign)."""
         return 0.0 if self.k == 0.0 else (a_from + a_to) / 2.0 * self.time(a_to - a_from)
+
+    def linear(self) -> "_Ramp":
+        """The linear ramp law with the same peak jerk."""
+        if self.kind == _LINEAR:
+            return self
+        r = _Ramp("jerk", None, 0.0)
+        r.j = self.j
+        return r
 
 
 def _ramp_dp(v: float, a: float, da: float, tau: float, c: float) -> float:
@@ -259,9 +273,12 @@ def _down_part(r: _Ramp, v: float, a1: float, vf: float, dmax: float):
     h = r.j * dv / r.k
     s = a1 * a1 / 2.0 - h
     if s < 0.0:
-        if s < -1e-12 * (a1 * a1 + abs(h)):
+        # rounding at the boundary A2 = 0, where the scans start: dv is a difference of
+        # velocities, so its rounding is relative to them, not to dv itself
+        tol = 1e-12 * (a1 * a1 + abs(h)) + 1e-14 * r.j * (abs(v) + abs(vf)) / r.k
+        if s < -tol:
             return None
-        s = 0.0  # rounding at the boundary A2 = 0, where the scans start
+        s = 0.0
     a2 = -math.sqrt(s)
     if a2 > a1 + 1e-12 * (abs(a1) + 1.0):
         return None
@@ -284,7 +301,7 @@ def _integrate(r: _Ramp, v0: float, a0: float, a1: float, t2: float, t4: float, 
                 if r.kind == _SIN2:
                     emit(_SIN2, tau, p, v, a_from, da)
                 else:
-                    emit(_LINEAR, tau, p, v, a_from, da / tau)
+                    emit(_LINEAR, tau, p, v, a_from, math.copysign(r.j, da))
             p += _ramp_dp(v, a_from, da, tau, r.c)
             v += (a_from + a_to) / 2.0 * tau
         return p, v, tau
@@ -354,14 +371,18 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
         # velocity where the acceleration crosses zero after (a1, t2); a1 >= 0
         return v0 + r.dv(a0, a1) + a1 * t2 + r.dv(a1, 0.0)
 
+    def a1_for_peak(v_peak: float) -> float:
+        # A1 (no hold) whose zero crossing happens at v_peak:
+        # v0 + k (A1^2 - a0^2)/(2j) + k A1^2/(2j) = v_peak
+        return math.sqrt(max(j * (v_peak - v0) / k + a0 * a0 / 2.0, 0.0))
+
     # -- cruise at v_max: reach v_max with a = 0, cruise, brake to vf
     v_stop = v0 + r.dv(a0, 0.0)
     if v_stop <= vmax * (1.0 + 1e-12):
         if k == 0.0:
             a1, t2 = amax, max((vmax - v0) / amax, 0.0)
         else:
-            sq = j * (vmax - v0) / k + a0 * a0 / 2.0
-            a1 = math.sqrt(max(sq, 0.0))
+            a1 = a1_for_peak(vmax)
             t2 = 0.0
             if a1 > amax:
                 a1 = amax
@@ -419,10 +440,9 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
     if k > 0.0:
         hi = amax
         if hi > 0.0 and peak_v(hi, 0.0) > vmax:
-            # largest A1 whose zero-crossing velocity stays within v_max
-            hi = math.sqrt(max((j * (vmax - v0) / k + a0 * a0 / 2.0), 0.0))
+            hi = a1_for_peak(vmax)  # largest A1 whose zero-crossing velocity stays within v_max
         hi = min(hi, amax)
-        rhs = a0 * a0 / 2.0 + j * (vf - v0) / k  # feasible: A1^2 >= rhs
+        rhs = a0 * a0 / 2.0 + j * (vf - v0) / k  # feasible (A2 <= 0): A1^2 >= rhs
         lo = max(a0, math.sqrt(rhs)) if rhs > 0.0 else a0
         scan(lambda a1: end_error(a1, 0.0), lo, hi, lambda a1: add(a1, 0.0))
     if amax >= a0 - 1e-12:
@@ -444,16 +464,22 @@ def _emit_collect(sign: float, p0: float, segs: list):
 
 
 def _brake(r: _Ramp, start: State, vmax: float, alim: float, segs: list) -> State:
-    """Bring a start state that violates the limits back inside them (appends segments)."""
+    """Bring a start state that violates the limits back inside them (appends segments).
+
+    Order: acceleration to its limit, then (sin² only) acceleration to 0, then speed to v_max.
+    """
     p, v, a = start.p, start.v, start.a
     if abs(a) > alim:
         tgt = math.copysign(alim, a)
-        tau = r.time(tgt - a)
+        r0 = r.linear()
+        tau = r0.time(tgt - a)
         if tau > 0.0:
-            segs.append((_LINEAR, tau, p, v, a, (tgt - a) / tau) if r.kind == _LINEAR else (_SIN2, tau, p, v, a, tgt - a))
-            p += _ramp_dp(v, a, tgt - a, tau, r.c)
+            segs.append((_LINEAR, tau, p, v, a, math.copysign(r0.j, tgt - a)))
+            p += _ramp_dp(v, a, tgt - a, tau, r0.c)
             v += (a + tgt) / 2.0 * tau
         a = tgt
+    settled = _settle_acceleration(r, State(p, v, a), segs)
+    p, v, a = settled.p, settled.v, settled.a
     v_stop = v + r.dv(a, 0.0)
     if abs(v_stop) > vmax or abs(v) > vmax:
         target_v = math.copysign(vmax, v_stop if abs(v_stop) > vmax else v)
@@ -462,6 +488,22 @@ def _brake(r: _Ramp, start: State, vmax: float, alim: float, segs: list) -> Stat
         end = _end_of(sub, State(p, v, a))
         p, v, a = end.p, end.v, 0.0
     return State(p, v, a)
+
+
+def _settle_acceleration(r: _Ramp, s: State, segs: list) -> State:
+    """A sin² plan from a != 0 (a replan in the middle of a ramp) first ramps a to 0.
+
+    State carries no jerk, so a new sin² bell would start with zero jerk and hold the
+    start acceleration longer than the ramp it replaces, carrying the speed past v_max.
+    A linear ramp at the full jerk removes it at least as fast as any sin² ramp; from
+    a = 0 on, the plan is made of sin² bells again.
+    """
+    if r.kind != _SIN2 or s.a == 0.0:
+        return s
+    lin = r.linear()
+    tau = lin.time(s.a)
+    segs.append((_LINEAR, tau, s.p, s.v, s.a, -math.copysign(lin.j, s.a)))
+    return State(s.p + _ramp_dp(s.v, s.a, -s.a, tau, lin.c), s.v + s.a / 2.0 * tau, 0.0)
 
 
 def _seg_end(kind: int, dur: float, p: float, v: float, a: float, x: float) -> State:
@@ -485,37 +527,20 @@ def _velocity_segments(r: _Ramp, s: State, vt: float, amax: float, dmax: float) 
     v0, a0, dv = sign * s.v, sign * s.a, sign * (vt - s.v)
     # speeding up in the travel direction uses a, slowing down uses d
     lim = amax if abs(vt) >= abs(s.v) else dmax
-    if r.k == 0.0:
+    k, j = r.k, r.j
+    if k == 0.0:
         a1, t2 = lim, max(dv / lim, 0.0)
     else:
-        a1 = math.sqrt(max(r.j * dv / r.k + a0 * a0 / 2.0, 0.0))
+        # v0 + k (A1^2 - a0^2)/(2j) + k A1^2/(2j) = vt, with A1 held at the limit if needed
+        a1 = math.sqrt(max(j * dv / k + a0 * a0 / 2.0, 0.0))
         t2 = 0.0
         if a1 > lim:
             a1 = lim
-            t2 = max((dv - r.k * (2.0 * lim * lim - a0 * a0) / (2.0 * r.j)) / lim, 0.0)
+            t2 = max((dv - k * (2.0 * lim * lim - a0 * a0) / (2.0 * j)) / lim, 0.0)
     segs: list = []
-    emit = _emit_collect(sign, s.p, segs)
-    # reuse the UDDU walker with an empty down part: ramp a0->a1, hold, ramp a1->0
-    _integrate_velocity(r, v0, a0, a1, t2, emit)
+    # the UDDU walker with an empty braking part: ramp a0 -> A1, hold, ramp A1 -> 0
+    _integrate(r, v0, a0, a1, t2, 0.0, 0.0, 0.0, _emit_collect(sign, s.p, segs))
     return segs
-
-
-def _integrate_velocity(r: _Ramp, v0: float, a0: float, a1: float, t2: float, emit) -> None:
-    p, v = 0.0, v0
-    for a_from, a_to, hold in ((a0, a1, 0.0), (a1, a1, t2), (a1, 0.0, 0.0)):
-        if a_from == a_to:
-            if hold > 0.0:
-                emit(_LINEAR, hold, p, v, a_from, 0.0)
-                p += hold * (v + hold * a_from / 2.0)
-                v += a_from * hold
-            continue
-        tau = r.time(a_to - a_from)
-        if tau <= 0.0:
-            continue
-        da = a_to - a_from
-        emit(_SIN2 if r.kind == _SIN2 else _LINEAR, tau, p, v, a_from, da if r.kind == _SIN2 else da / tau)
-        p += _ramp_dp(v, a_from, da, tau, r.c)
-        v += (a_from + a_to) / 2.0 * tau
 
 
 # ---------------------------------------------------------------- WAGO time/path variants
@@ -589,6 +614,16 @@ def _common(shape: str, start: State, limits: Limits) -> tuple[str, str, float, 
     return base, variant, vmax, amax, dmax
 
 
+_TINY = 1e-100
+
+
+def _snap_tiny(s: State, vmax: float, amax: float) -> State:
+    """Values 1e-100 below the limits are 0: their squares underflow in the closed forms."""
+    v = 0.0 if abs(s.v) < _TINY * vmax else s.v
+    a = 0.0 if abs(s.a) < _TINY * amax else s.a
+    return s if (v, a) == (s.v, s.a) else State(s.p, v, a)
+
+
 def plan(shape: str, start: State, target: State, limits: Limits) -> Profile:
     """Plan a move from `start` to `target` (position and velocity, a = 0)."""
     base, variant, vmax, amax, dmax = _common(shape, start, limits)
@@ -602,14 +637,17 @@ def plan(shape: str, start: State, target: State, limits: Limits) -> Profile:
 
     r = _Ramp(base, limits, max(amax, dmax))
     segs: list = []
-    s = _brake(r, start, vmax, max(amax, dmax), segs)
+    s = _brake(r, _snap_tiny(start, vmax, amax), vmax, max(amax, dmax), segs)
+    # distances and speeds 1e-100 below the limits are 0 (their squares would underflow)
+    dist = 0.0 if abs(target.p - s.p) < _TINY * vmax * vmax / amax else target.p - s.p
+    vf = 0.0 if abs(target.v) < _TINY * vmax else target.v
     best = None
     # With a != d some moves (e.g. a run-up that must first back away) have no
     # profile with the drive ramp at a and the braking ramp at d; they fall back to
     # min(a, d) for both, which keeps every limit and always has a solution.
     for a_lim, d_lim in ((amax, dmax), (min(amax, dmax), min(amax, dmax))):
         for sign in (1.0, -1.0):
-            cands = _solve_up(r, sign * s.v, sign * s.a, sign * (target.p - s.p), sign * target.v, vmax, a_lim, d_lim)
+            cands = _solve_up(r, sign * s.v, sign * s.a, sign * dist, sign * vf, vmax, a_lim, d_lim)
             for c in cands:
                 if best is None or c.duration < best[1].duration:
                     best = (sign, c)
