@@ -197,3 +197,112 @@ def test_stepper_axis_follows_its_set_point_in_microsteps():
     m = Machine(parse_machine(d))
     assert m.run(5.0).completed
     assert m.units["s"].drive.position_microsteps == 12.5 * 1280
+
+
+PLANT = """
+[machine]
+duration = 20.0
+seed = 5
+[[axis]]
+name = "x"
+unit = "mm"
+counts_per_unit = 2000.0
+v_max = 200.0
+a_max = 2000.0
+j_max = 50000.0
+kv = 30.0
+following_error_limit = 2.0
+[axis.drive]
+type = "servo"
+command = "analog"
+velocity_per_volt = 30.0
+offset_volts = 0.01
+[axis.encoder]
+lines_per_unit = 500.0
+[[axis.switches]]
+name = "ref"
+kind = "reference"
+position = -40.0
+width = 10.0
+[material]
+speed = 500.0
+[[marks]]
+name = "marks"
+pitch = 200.0
+width = 5.0
+jitter = 0.5
+sensor_position = 100.0
+[io]
+inputs = ["x.ref"]
+[[job.steps]]
+axis = "x"
+command = "power"
+on = true
+[[job.steps]]
+axis = "x"
+command = "home"
+method = "switch"
+switch = "ref"
+velocity = 20.0
+direction = "negative"
+position = 0.0
+[[job.steps]]
+axis = "x"
+command = "move_absolute"
+position = 100.0
+"""
+
+
+def plant_machine(tmp_path, text=PLANT, seed=None):
+    f = tmp_path / "plant.toml"
+    f.write_text(text)
+    return Machine.from_file(f, seed=seed)
+
+
+def test_switch_homing_in_a_machine_gives_the_switch_edge_the_home_position(tmp_path):
+    m = plant_machine(tmp_path)
+    assert m.run().completed
+    ax = m.axis("x")
+    assert ax.homed
+    # searching negative from 0 the cam (-40 .. -30 in the plant) is met at -30: that is 0 now
+    assert ax.position_offset == pytest.approx(30.0, abs=0.05)
+    assert ax.actual_position == pytest.approx(100.0, abs=0.05)
+    assert m.units["x"].drive.position == pytest.approx(70.0, abs=0.05)
+    # the switch reached the I/O image while the axis passed it
+    assert m.trace.data()["io.x.ref"].any()
+
+
+def test_analog_offset_leaves_the_p_loop_steady_state_error(tmp_path):
+    m = plant_machine(tmp_path)
+    m.run()
+    m.scheduler.run(2000)  # settle fully
+    # offset 0.01 V * 30 mm/s/V must be held by kv * error: error = 0.3 / 30 mm
+    assert m.axis("x").following_error == pytest.approx(-0.01, abs=1e-3)
+
+
+def test_print_marks_on_the_material_are_captured_with_their_times(tmp_path):
+    m = plant_machine(tmp_path)
+    m.run(1.0)
+    edges = [e for e in m.sensors["marks"].edges if e.rising]
+    # 500 mm/s past a sensor at 100 mm, marks every 200 mm (jitter sigma 0.5 mm): 100, 300, 500
+    assert [round(e.time, 2) for e in edges] == [0.2, 0.6, 1.0][: len(edges)] and len(edges) >= 2
+    for e in edges:
+        assert e.position == pytest.approx(500.0 * e.time, rel=1e-12)  # material travel at the edge
+        assert abs(e.position - 100.0 - 200.0 * e.mark) <= 1.5 + 1e-9  # mark k: jitter sigma 0.5, clipped at 3 sigma
+    d = m.trace.data()
+    # the scope records after the plant step: the last sample is the travel at the end of the run
+    assert d["material.position"][-1] == pytest.approx(500.0 * m.clock.cycle * m.period, rel=1e-9)
+
+
+def test_mark_jitter_follows_the_seed(tmp_path):
+    times = []
+    for seed in (5, 5, 6):
+        m = plant_machine(tmp_path, seed=seed)
+        m.run(2.0)
+        times.append([e.time for e in m.sensors["marks"].edges])
+    assert times[0] == times[1] and times[0] != times[2]
+
+
+def test_homing_on_a_switch_the_axis_does_not_have_is_named(tmp_path):
+    with pytest.raises(ConfigError, match="switch = 'home'"):
+        plant_machine(tmp_path, PLANT.replace('switch = "ref"', 'switch = "home"'))

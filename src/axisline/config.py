@@ -4,6 +4,10 @@
     [[axis]]             one table per axis: the axis parameters (motion.axis.AxisConfig)
       [axis.drive]       type = "servo" | "stepper" and the drive model's parameters
       [axis.encoder]     optional: an incremental encoder on the motor (counts -> actual position)
+      [[axis.switches]]  optional: reference and limit switches on the axis (name, kind, position ...)
+    [material]           optional: the material line (web, strip) with its speed profile and slip
+    [[marks]]            optional: print-mark sensors on the material
+    [io]                 optional: named digital inputs and outputs
     [job]                the scripted main job: repeat, [[job.steps]]
     [trace]              the scope: capacity, decimation, channels
 
@@ -23,7 +27,17 @@ from .configerrors import ConfigError, explain
 from .job import JobConfig
 from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
 from .motion.axis import AxisConfig
-from .plant.config import EncoderConfig, ServoDriveConfig, StepperDriveConfig
+from .plant.config import (
+    DigitalIOConfig,
+    EncoderConfig,
+    MaterialConfig,
+    PrintMarkConfig,
+    ServoDriveConfig,
+    StepperDriveConfig,
+    SwitchConfig,
+)
+
+Name = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
 
 
 class _Strict(BaseModel):
@@ -40,9 +54,13 @@ class MachineSection(_Strict):
 
 class ServoEntry(ServoDriveConfig):
     type: Literal["servo"] = "servo"
+    command: Literal["digital", "analog"] = Field(
+        "digital",
+        description="digital: ideal velocity set point; analog: the +-10 V path with its offset, drift and gain errors",
+    )
 
     def build(self):
-        return ServoDriveConfig.model_validate(self.model_dump(exclude={"type"})).build()
+        return ServoDriveConfig.model_validate(self.model_dump(exclude={"type", "command"})).build()
 
 
 class StepperEntry(StepperDriveConfig):
@@ -55,11 +73,20 @@ class StepperEntry(StepperDriveConfig):
 DriveEntry = Annotated[Union[ServoEntry, StepperEntry], Field(discriminator="type")]
 
 
+class SwitchEntry(SwitchConfig):
+    name: Name = Field(description="switch name, e.g. ref or limit_pos; read as '<axis>.<name>'")
+
+
 class AxisEntry(AxisConfig):
-    """An axis with the drive and encoder of the simulated plant behind it."""
+    """An axis with the drive, encoder and switches of the simulated plant behind it."""
 
     drive: DriveEntry = Field(default_factory=ServoEntry, description="the drive model")
     encoder: EncoderConfig | None = Field(None, description="incremental encoder; none: actual = drive position")
+    switches: list[SwitchEntry] = Field(default_factory=list, max_length=16, description="switches on this axis")
+
+
+class MarkEntry(PrintMarkConfig):
+    name: Name = Field("marks", description="sensor name; its edges are read as '<name>'")
 
 
 class TraceConfig(_Strict):
@@ -73,6 +100,9 @@ class TraceConfig(_Strict):
 class MachineConfig(_Strict):
     machine: MachineSection = Field(default_factory=MachineSection)
     axis: list[AxisEntry] = Field(default_factory=list, max_length=64)
+    material: MaterialConfig | None = Field(None, description="the material line, if the machine has one")
+    marks: list[MarkEntry] = Field(default_factory=list, max_length=16, description="print-mark sensors on the material")
+    io: DigitalIOConfig = Field(default_factory=DigitalIOConfig, description="named digital inputs and outputs")
     job: JobConfig = Field(default_factory=JobConfig)
     trace: TraceConfig = Field(default_factory=TraceConfig)
 
@@ -82,9 +112,24 @@ class MachineConfig(_Strict):
         for n in names:
             if names.count(n) > 1:
                 raise ValueError(f"axis name {n!r} is used twice")
+        switches = [f"{a.name}.{sw.name}" for a in self.axis for sw in a.switches]
+        for n in switches:
+            if switches.count(n) > 1:
+                raise ValueError(f"switch name {n!r} is used twice")
+        if self.marks and self.material is None:
+            raise ValueError("marks: print-mark sensors need a [material] line to read marks from")
+        marks = [m.name for m in self.marks]
+        for n in marks:
+            if marks.count(n) > 1:
+                raise ValueError(f"marks name {n!r} is used twice")
         for i, step in enumerate(self.job.steps):
             if step.command is not None and step.axis not in names:
                 raise ValueError(f"job.steps[{i}].axis = {step.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")
+            if step.command == "home" and step.method == "switch" and f"{step.axis}.{step.switch}" not in switches:
+                raise ValueError(
+                    f"job.steps[{i}].switch = {step.switch!r}: axis {step.axis!r} has no such switch "
+                    f"(switches: {', '.join(switches) or 'none'})"
+                )
             if step.command is None and step.dwell is None:
                 raise ValueError(f"job.steps[{i}]: a step needs a command or a dwell")
             try:

@@ -26,7 +26,12 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "set_position": ("position", "relative"),
     "jog": ("direction",),
     "reset": (),
+    "home": ("method", "position", "velocity", "direction", "switch", "acceleration", "max_distance"),
 }
+
+
+_ARGUMENTS = ("on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode",
+              "direction", "relative", "method", "switch", "max_distance")
 
 
 class JobStep(BaseModel):
@@ -48,6 +53,9 @@ class JobStep(BaseModel):
     buffer_mode: Literal["aborting", "buffered"] | None = None
     direction: Literal["shortest", "positive", "negative", "current", -1, 0, 1] | None = None
     relative: bool | None = None
+    method: Literal["direct", "switch"] | None = Field(None, description="homing: set the position here, or search a switch")
+    switch: str | None = Field(None, description="homing: the axis' switch to search")
+    max_distance: float | None = Field(None, gt=0.0, description="homing: give up after this search distance")
 
     def arguments(self) -> dict[str, Any]:
         """Keyword arguments for the axis command (only those given)."""
@@ -55,7 +63,7 @@ class JobStep(BaseModel):
         given = {k: getattr(self, k) for k in allowed if getattr(self, k) is not None}
         extra = [
             k
-            for k in ("on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode", "direction", "relative")
+            for k in _ARGUMENTS
             if getattr(self, k) is not None and k not in allowed
         ]
         if extra:

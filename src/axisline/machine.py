@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections import deque
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -27,8 +28,10 @@ from .config import AxisEntry, MachineConfig, load_machine_file
 from .configerrors import ConfigError
 from .job import JobRunner
 from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace, WallClock
-from .motion.axis import Axis, AxisState
+from .motion.axis import Axis, AxisConfig, AxisState
+from .motion.homing import DirectHoming, SwitchHoming
 from .plant.drives import ServoDrive, StepperDrive
+from .plant.sensors import Edge
 
 _ERROR_STOP = AxisState.ERROR_STOP
 # states in which an axis is not producing motion
@@ -68,6 +71,23 @@ class AxisUnit:
 
 
 @dataclass
+class Sensor:
+    """A plant sensor with sub-cycle edges (switch or print-mark sensor) and its recent edges."""
+
+    name: str
+    device: Any
+    edges: deque = field(default_factory=lambda: deque(maxlen=1024))
+
+    def sample(self, t_start: float, dt: float) -> None:
+        for e in self.device.sample(t_start, dt):
+            self.edges.append(e)  # Edge is an immutable tuple: safe to keep
+
+    @property
+    def state(self) -> bool:
+        return self.device.state
+
+
+@dataclass
 class RunResult:
     cycles: int
     simulated_s: float
@@ -90,9 +110,18 @@ class Machine:
         self.scheduler = Scheduler(self.clock)
         self.commands = self.scheduler.commands
         self.units: dict[str, AxisUnit] = {}
+        self.sensors: dict[str, Sensor] = {}  # "<axis>.<switch>" and print-mark sensors
         self.faults: list[str] = []
         for entry in config.axis:
             self._add_axis(entry)
+        self.material = config.material.build() if config.material is not None else None
+        for i, mark in enumerate(config.marks):
+            # each random source gets its own stream, so adding one leaves the others' alone
+            rng = np.random.default_rng([self.seed, 1000 + i])
+            self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, rng))
+        self.io = config.io.build()
+        self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
+        self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
         self._axes = tuple((n, u.axis) for n, u in self.units.items())
         self._reported: dict[str, str] = {}
         self.job = JobRunner(config.job, self.period, self._issue)
@@ -110,15 +139,16 @@ class Machine:
         return cls(load_machine_file(path), seed=seed, clock=clock, source=str(path))
 
     def _add_axis(self, entry: AxisEntry) -> None:
-        axis_cfg = entry.model_dump(exclude={"drive", "encoder"})
-        from .motion.axis import AxisConfig
-
+        # the axis sees only its own parameters, not the plant tables beside them
+        axis_cfg = entry.model_dump(include=set(AxisConfig.model_fields))
         axis = Axis(AxisConfig.model_validate(axis_cfg), self.period)
         drive = entry.drive.build()
         encoder = entry.encoder.build(drive) if entry.encoder is not None else None
         unit = AxisUnit(axis, drive, encoder, entry)
         unit.actual_position = drive.position
         name = entry.name
+        for sw in entry.switches:
+            self.sensors[f"{name}.{sw.name}"] = Sensor(f"{name}.{sw.name}", sw.build(drive))
         self.units[name] = unit
         s = self.scheduler
         s.add_task(f"{name}.inputs", unit.sample, Stage.INPUTS)
@@ -135,6 +165,15 @@ class Machine:
                 drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
                 drive.step(dt)
 
+        elif unit.config.drive.type == "servo" and unit.config.drive.command == "analog":
+            volts_per_velocity = 1.0 / drive.velocity_per_volt
+
+            # the classic +-10 V interface: the amplifier's offset, drift and gain errors apply
+            def actuate(cycle: int) -> None:
+                drive.enable(axis.state is not AxisState.DISABLED)
+                drive.command_voltage(unit.velocity_output * volts_per_velocity)
+                drive.step(dt)
+
         else:
 
             def actuate(cycle: int) -> None:
@@ -144,6 +183,32 @@ class Machine:
 
         return actuate
 
+    def _plant_step(self, cycle: int) -> None:
+        """The rest of the plant after the drives moved: material, then every sensor's edges."""
+        dt = self.period
+        if self.material is not None:
+            self.material.step(dt)
+        t_start = cycle * self.clock.period_us / 1e6
+        for sensor in self.sensors.values():
+            sensor.sample(t_start, dt)
+        for name, sensor in self._io_followers:
+            self.io.set_input(name, sensor.state)
+        self.io.sample()
+
+    def _plant_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
+        out: dict[str, tuple[Callable[[], Any], str, type]] = {}
+        if self.material is not None:
+            mat = self.material
+            out["material.position"] = (lambda: mat.position, "", float)
+            out["material.speed"] = (lambda: mat.velocity, "/s", float)
+        for name, sensor in self.sensors.items():
+            out[f"{name}.state"] = (lambda sensor=sensor: bool(sensor.state), "", bool)
+        for name in self.config.io.inputs:
+            out[f"io.{name}"] = (lambda name=name: self.io.read(name), "", bool)
+        for name in self.config.io.outputs:
+            out[f"io.{name}"] = (lambda name=name: self.io.output(name), "", bool)
+        return out
+
     def _make_trace(self) -> Trace:
         tc = self.config.trace
         tr = Trace(tc.capacity, decimation=tc.decimation, mode=tc.mode, period_us=self.clock.period_us)
@@ -152,7 +217,7 @@ class Machine:
             ax, dr, unit = u.axis, u.drive, u.config.unit
             sig = {
                 "command_position": (lambda ax=ax: ax.command_position, unit, float),
-                "actual_position": (lambda u=u: u.actual_position, unit, float),
+                "actual_position": (lambda ax=ax: ax.actual_position, unit, float),  # axis frame
                 "command_velocity": (lambda ax=ax: ax.command_velocity, f"{unit}/s", float),
                 "actual_velocity": (lambda dr=dr: dr.velocity, f"{unit}/s", float),
                 "command_acceleration": (lambda ax=ax: ax.command_acceleration, f"{unit}/s^2", float),
@@ -165,6 +230,7 @@ class Machine:
             }
             for k, v in sig.items():
                 available[f"{name}.{k}"] = v
+        available.update(self._plant_channels())
         wanted = list(available) if tc.channels == "all" else tc.channels
         unknown = [c for c in wanted if c not in available]
         if unknown:
@@ -186,7 +252,26 @@ class Machine:
     def _issue(self, axis: str, command: str, kwargs: dict[str, Any]) -> Any:
         """Give an axis command from inside the cycle (job, personality)."""
         ax = self.units[axis].axis
+        if command == "home":
+            return ax.home(self._homing(axis, kwargs))
         return getattr(ax, command)(**_axis_kwargs(command, kwargs))
+
+    def _homing(self, axis: str, kw: dict[str, Any]):
+        """A homing procedure from job-step words (method = direct | switch)."""
+        position = kw.get("position", 0.0)
+        if kw.get("method", "direct") == "direct":
+            return DirectHoming(position)
+        sensor = self.sensors[f"{axis}.{kw['switch']}"]
+        cfg = self.units[axis].axis.config
+        direction = kw.get("direction", -1)
+        return SwitchHoming(
+            lambda: sensor.state,
+            velocity=kw.get("velocity", cfg.jog_velocity),
+            direction=-1 if direction in (-1, "negative") else 1,
+            position=position,
+            acceleration=kw.get("acceleration"),
+            max_distance=kw.get("max_distance"),
+        )
 
     def submit(self, axis: str, command: str, **kwargs: Any):
         """Give an axis command from outside (CLI, fieldbus, HMI): applied at the next cycle boundary."""
@@ -270,7 +355,7 @@ class Machine:
             axes[name] = {
                 "state": ax.state.name,
                 "command_position": ax.command_position,
-                "actual_position": u.actual_position,
+                "actual_position": ax.actual_position,
                 "position": ax.position,
                 "following_error": ax.following_error,
                 "max_following_error": u.max_following_error,
