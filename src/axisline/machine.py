@@ -19,6 +19,8 @@ import math
 import time
 from collections import deque
 from dataclasses import dataclass, field
+from functools import partial
+from operator import attrgetter
 from pathlib import Path
 from typing import Any, Callable
 
@@ -34,6 +36,7 @@ from .plant.drives import ServoDrive, StepperDrive
 from .plant.sensors import Edge
 
 _ERROR_STOP = AxisState.ERROR_STOP
+_DISABLED = AxisState.DISABLED
 # states in which an axis is not producing motion
 _IDLE = {AxisState.STANDSTILL, AxisState.DISABLED, AxisState.ERROR_STOP}
 
@@ -161,7 +164,8 @@ class Machine:
         if isinstance(drive, StepperDrive):
             # open loop: the pulse output follows the set point, the motor follows the pulses
             def actuate(cycle: int) -> None:
-                drive.enable(axis.state is not AxisState.DISABLED)
+                if (axis.state is not _DISABLED) is not drive.enabled:
+                    drive.enable(not drive.enabled)
                 drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
                 drive.step(dt)
 
@@ -170,14 +174,16 @@ class Machine:
 
             # the classic +-10 V interface: the amplifier's offset, drift and gain errors apply
             def actuate(cycle: int) -> None:
-                drive.enable(axis.state is not AxisState.DISABLED)
+                if (axis.state is not _DISABLED) is not drive.enabled:
+                    drive.enable(not drive.enabled)
                 drive.command_voltage(unit.velocity_output * volts_per_velocity)
                 drive.step(dt)
 
         else:
 
             def actuate(cycle: int) -> None:
-                drive.enable(axis.state is not AxisState.DISABLED)
+                if (axis.state is not _DISABLED) is not drive.enabled:
+                    drive.enable(not drive.enabled)
                 drive.command_velocity(unit.velocity_output)
                 drive.step(dt)
 
@@ -215,18 +221,19 @@ class Machine:
         available: dict[str, tuple[Callable[[], Any], str, type]] = {}
         for name, u in self.units.items():
             ax, dr, unit = u.axis, u.drive, u.config.unit
+            # attrgetter/partial are C calls: the scope samples dozens of channels per cycle
             sig = {
-                "command_position": (lambda ax=ax: ax.command_position, unit, float),
-                "actual_position": (lambda ax=ax: ax.actual_position, unit, float),  # axis frame
-                "command_velocity": (lambda ax=ax: ax.command_velocity, f"{unit}/s", float),
-                "actual_velocity": (lambda dr=dr: dr.velocity, f"{unit}/s", float),
-                "command_acceleration": (lambda ax=ax: ax.command_acceleration, f"{unit}/s^2", float),
-                "actual_acceleration": (lambda dr=dr: dr.acceleration, f"{unit}/s^2", float),
-                "command_jerk": (lambda ax=ax: ax.command_jerk, f"{unit}/s^3", float),
-                "following_error": (lambda ax=ax: ax.following_error, unit, float),
-                "velocity_output": (lambda u=u: u.velocity_output, f"{unit}/s", float),
+                "command_position": (_getter(ax, "command_position"), unit, float),
+                "actual_position": (_getter(ax, "actual_position"), unit, float),  # axis frame
+                "command_velocity": (_getter(ax, "command_velocity"), f"{unit}/s", float),
+                "actual_velocity": (_getter(dr, "velocity"), f"{unit}/s", float),
+                "command_acceleration": (_getter(ax, "command_acceleration"), f"{unit}/s^2", float),
+                "actual_acceleration": (_getter(dr, "acceleration"), f"{unit}/s^2", float),
+                "command_jerk": (_getter(ax, "command_jerk"), f"{unit}/s^3", float),
+                "following_error": (_getter(ax, "following_error"), unit, float),
+                "velocity_output": (_getter(u, "velocity_output"), f"{unit}/s", float),
                 "state": (lambda ax=ax: _STATE_CODE[ax.state], "", int),
-                "enabled": (lambda dr=dr: bool(dr.enabled), "", bool),
+                "enabled": (_getter(dr, "enabled"), "", bool),
             }
             for k, v in sig.items():
                 available[f"{name}.{k}"] = v
@@ -384,6 +391,10 @@ class Machine:
             "axes": axes,
             "trace": {"samples": len(self.trace), "channels": list(self.trace.channels)} if self.trace else None,
         }
+
+
+def _getter(obj: Any, name: str) -> Callable[[], Any]:
+    return partial(attrgetter(name), obj)
 
 
 _STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...

@@ -79,6 +79,11 @@ class CommandQueue:
         run. Commands submitted while applying wait for the next boundary.
         """
         scheduled = self._scheduled
+        if not scheduled and not self._pending:
+            # the usual cycle, without the lock: a command appended meanwhile is simply
+            # seen at the next boundary (reading a list's length is atomic in CPython)
+            self._last_boundary = cycle
+            return 0
         with self._lock:
             self._last_boundary = cycle
             due = bool(scheduled) and scheduled[0][0] <= cycle

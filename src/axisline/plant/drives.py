@@ -111,6 +111,7 @@ class ServoDrive:
         self.offset_volts = float(offset_volts)
         self.drift_volts_per_second = float(drift_volts_per_second)
         self.gain_factor = float(gain_factor)
+        self._memo_h = self._memo_tau = self._memo_decay = math.nan
         self.velocity_error = 0.0
         """Velocity (units/s) the loop loses to load, subtracted from its reference: a hook for
         load-disturbance and following-error tests."""
@@ -201,7 +202,11 @@ class ServoDrive:
         if self.loop == "first_order":
             tau = self.time_constant
             e0 = v - (r0 - rho * tau)  # deviation from the ramp's steady-state response
-            one_minus_e = -math.expm1(-h / tau)
+            if h == self._memo_h and tau == self._memo_tau:
+                one_minus_e = self._memo_decay  # the usual whole cycle: computed once
+            else:
+                one_minus_e = -math.expm1(-h / tau)
+                self._memo_h, self._memo_tau, self._memo_decay = h, tau, one_minus_e
             decay = 1.0 - one_minus_e
             v_h = r0 + rho * h - rho * tau + e0 * decay
             a_h = rho - e0 * decay / tau
