@@ -260,23 +260,24 @@ class _Cand:
     duration: float
 
 
-def _down_part(r: _Ramp, v: float, a1: float, vf: float, dmax: float):
+def _down_part(r: _Ramp, v: float, a1: float, vf: float, dmax: float, edge: bool = False):
     """From (v, a1) ramp down to A2 (>= -dmax), hold, ramp up to 0 at vf.
 
-    Returns (a2, t6) or None when the velocity cannot be reached this way.
+    Returns (a2, t6) or None when the velocity cannot be reached this way. `edge`: the
+    caller stands on the boundary A2 = 0 of the feasible set (where the scans start), so
+    a result just outside it is rounding, not infeasibility.
     """
     dv = vf - v
     if r.k == 0.0:  # trapezoid: only the hold at -dmax brakes
         if dv > 0.0:
-            return None
+            if not edge:
+                return None
+            dv = 0.0
         return -dmax, -dv / dmax
     h = r.j * dv / r.k
     s = a1 * a1 / 2.0 - h
     if s < 0.0:
-        # rounding at the boundary A2 = 0, where the scans start: dv is a difference of
-        # velocities, so its rounding is relative to them, not to dv itself
-        tol = 1e-12 * (a1 * a1 + abs(h)) + 1e-14 * r.j * (abs(v) + abs(vf)) / r.k
-        if s < -tol:
+        if not edge and s < -1e-12 * (a1 * a1 + abs(h)):
             return None
         s = 0.0
     a2 = -math.sqrt(s)
@@ -359,7 +360,7 @@ def _illinois(f: Callable[[float], float], lo: float, hi: float, flo: float, fhi
     return x
 
 
-_GRID = 24
+_GRID = 4  # p_end is monotonic on each interval in every case tried; a few points guard the rest
 
 
 def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: float, amax: float, dmax: float) -> list[_Cand]:
@@ -399,32 +400,34 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
                     out.append(_Cand(a1, t2, t4, a2, t6, t + t4))
 
     # -- no cruise: one free parameter, first A1 in [a0, amax], then hold1 at amax
-    def end_error(a1: float, t2: float) -> float | None:
-        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax)
+    def end_error(a1: float, t2: float, edge: bool = False) -> float | None:
+        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax, edge)
         if dn is None:
             return None
         p, _, _ = _integrate(r, v0, a0, a1, t2, 0.0, dn[0], dn[1])
         return p - dist
 
-    def scan(f, lo: float, hi: float, make) -> None:
+    def scan(f, lo: float, hi: float, make, edge: bool) -> None:
+        """Roots of f on [lo, hi]; edge: lo is the feasibility boundary A2 = 0."""
         if not hi >= lo:
             return
         n = _GRID if hi > lo else 0
         xs = [lo + (hi - lo) * i / n for i in range(n)] + [hi] if n else [lo]
         prev_x = prev_f = None
-        for x in xs:
-            fx = f(x)
+        for i, x in enumerate(xs):
+            at_edge = edge and i == 0
+            fx = f(x, at_edge)
             if fx is None:
                 prev_x = prev_f = None
                 continue
             if fx == 0.0:
-                make(x)
+                make(x, at_edge)
             elif prev_f is not None and (fx > 0.0) != (prev_f > 0.0):
-                make(_illinois(f, prev_x, x, prev_f, fx))
+                make(_illinois(lambda y: f(y, False), prev_x, x, prev_f, fx), False)
             prev_x, prev_f = x, fx
 
-    def add(a1: float, t2: float) -> None:
-        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax)
+    def add(a1: float, t2: float, edge: bool) -> None:
+        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax, edge)
         if dn is None:
             return
         a2, t6 = dn
@@ -443,13 +446,16 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
             hi = a1_for_peak(vmax)  # largest A1 whose zero-crossing velocity stays within v_max
         hi = min(hi, amax)
         rhs = a0 * a0 / 2.0 + j * (vf - v0) / k  # feasible (A2 <= 0): A1^2 >= rhs
-        lo = max(a0, math.sqrt(rhs)) if rhs > 0.0 else a0
-        scan(lambda a1: end_error(a1, 0.0), lo, hi, lambda a1: add(a1, 0.0))
+        edge = rhs > 0.0 and math.sqrt(rhs) > a0
+        lo = math.sqrt(rhs) if edge else a0
+        scan(lambda a1, e: end_error(a1, 0.0, e), lo, hi, lambda a1, e: add(a1, 0.0, e), edge)
     if amax >= a0 - 1e-12:
         base = v0 + r.dv(a0, amax)
         t2max = (vmax - r.dv(amax, 0.0) - base) / amax
-        lo = max(0.0, (vf - base - (k * amax * amax / (2.0 * j) if k else 0.0)) / amax)
-        scan(lambda t2: end_error(amax, t2), lo, t2max, lambda t2: add(amax, t2))
+        lo = (vf - base - (k * amax * amax / (2.0 * j) if k else 0.0)) / amax
+        edge = lo > 0.0
+        lo = max(lo, 0.0)
+        scan(lambda t2, e: end_error(amax, t2, e), lo, t2max, lambda t2, e: add(amax, t2, e), edge)
     return out
 
 
@@ -637,7 +643,7 @@ def plan(shape: str, start: State, target: State, limits: Limits) -> Profile:
 
     r = _Ramp(base, limits, max(amax, dmax))
     segs: list = []
-    s = _brake(r, _snap_tiny(start, vmax, amax), vmax, max(amax, dmax), segs)
+    s = _brake(r, _snap_tiny(start, vmax, amax), vmax, min(amax, dmax), segs)
     # distances and speeds 1e-100 below the limits are 0 (their squares would underflow)
     dist = 0.0 if abs(target.p - s.p) < _TINY * vmax * vmax / amax else target.p - s.p
     vf = 0.0 if abs(target.v) < _TINY * vmax else target.v
@@ -681,7 +687,7 @@ def plan_velocity(shape: str, start: State, v_target: float, limits: Limits) -> 
         return Profile(shape, start, State(end.p, v_target), segs)
     r = _Ramp(base, limits, max(amax, dmax))
     segs = []
-    s = _brake(r, start, vmax, max(amax, dmax), segs)
+    s = _brake(r, start, vmax, min(amax, dmax), segs)
     segs.extend(_velocity_segments(r, s, v_target, amax, dmax))
     end = _end_of(segs, start) if segs else start
     return Profile(shape, start, State(end.p, v_target), segs)
