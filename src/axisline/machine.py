@@ -124,7 +124,8 @@ class Machine:
             self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, rng))
         self.io = config.io.build()
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
-        self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
+        if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
+            self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
         self._axes = tuple((n, u.axis) for n, u in self.units.items())
         self._reported: dict[str, str] = {}
         self.job = JobRunner(config.job, self.period, self._issue)

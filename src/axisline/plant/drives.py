@@ -178,7 +178,8 @@ class ServoDrive:
         else:
             v = self._command
         v -= self.velocity_error
-        return min(self.max_velocity, max(-self.max_velocity, v))
+        m = self.max_velocity  # (compare, not min/max: this runs every cycle)
+        return m if v > m else -m if v < -m else v
 
     @property
     def reference_velocity(self) -> float:
@@ -264,24 +265,26 @@ class ServoDrive:
         target = self.commanded_velocity
         r = self._reference
         diff = target - r
-        if diff == 0.0 or self.max_acceleration == math.inf:
-            self._h1, self._r1, self._rho1 = dt, target, 0.0
+        amax = self.max_acceleration
+        if diff == 0.0 or amax == math.inf:
+            h1, r1, rho1 = dt, target, 0.0
             r = target
         else:
-            rho = math.copysign(self.max_acceleration, diff)
-            t_ramp = abs(diff) / self.max_acceleration
+            rho1 = amax if diff > 0.0 else -amax
+            t_ramp = (diff if diff > 0.0 else -diff) / amax
+            r1 = r
             if t_ramp >= dt:
-                self._h1, self._r1, self._rho1 = dt, r, rho
-                r += rho * dt
+                h1 = dt
+                r += rho1 * dt
             else:
-                self._h1, self._r1, self._rho1 = t_ramp, r, rho
+                h1 = t_ramp
                 r = target  # snapped: the ramp ends exactly on the target
-        state = self._advance(self.position, self.velocity, self.acceleration,
-                              self._r1, self._rho1, self._h1)
-        if self._h1 < dt:
+        self._h1, self._r1, self._rho1 = h1, r1, rho1
+        state = self._advance(self.position, self.velocity, self.acceleration, r1, rho1, h1)
+        if h1 < dt:
             self._xm, self._vm, self._am = state
             self._r2 = target
-            state = self._advance(*state, target, 0.0, dt - self._h1)
+            state = self._advance(*state, target, 0.0, dt - h1)
         self.position, self.velocity, self.acceleration = state
         self._reference = r
         self._elapsed += dt
