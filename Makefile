@@ -18,7 +18,7 @@ $(STAMP): $(BIN)/python pyproject.toml constraints.txt
 setup: $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/axisline run examples/positioning.toml --json out/demo.json --trace out/demo.npz --plot out/demo
+	$(BIN)/axisline run examples/positioning.toml --report out/demo
 
 test: $(STAMP)
 	$(BIN)/python -m pytest

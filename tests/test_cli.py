@@ -141,3 +141,13 @@ def test_serve_stops_cleanly_on_a_signal(sig):
     assert proc.returncode == 0, err
     assert "stopped" in out
     assert "axes at rest" in err
+
+
+def test_report_folder_holds_report_summary_trace_and_plots(tmp_path):
+    res = runner.invoke(app, ["run", str(EXAMPLES / "positioning.toml"), "--report", str(tmp_path / "rep"), "--quiet"])
+    assert res.exit_code == 0
+    names = {p.name for p in (tmp_path / "rep").iterdir()}
+    assert {"report.md", "summary.json", "trace.npz", "trace.csv", "axis_x.png", "axis_r.png"} <= names
+    md = (tmp_path / "rep" / "report.md").read_text()
+    assert "**completed**" in md and "![axis_x](axis_x.png)" in md
+    assert "| x | STANDSTILL |" in md

@@ -64,6 +64,7 @@ def run(
     json_out: Optional[Path] = typer.Option(None, "--json", help="write the run summary as JSON"),
     trace_out: Optional[Path] = typer.Option(None, "--trace", help="write the scope trace (.npz; .csv beside it)"),
     plot_dir: Optional[Path] = typer.Option(None, "--plot", help="write plots (PNG) into this folder"),
+    report_dir: Optional[Path] = typer.Option(None, "--report", help="write report.md, summary.json, the trace and plots into this folder"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
 ) -> None:
     """Run the machine on the embedded simulated plant (as fast as possible, exact time)."""
@@ -78,6 +79,10 @@ def run(
             task = bar.add_task("run", total=1.0)
             result = m.run(duration, progress=lambda f: bar.update(task, completed=f))
     summary = m.summary(result)
+    if report_dir is not None:
+        json_out = json_out or report_dir / "summary.json"
+        trace_out = trace_out or report_dir / "trace.npz"
+        plot_dir = plot_dir or report_dir
     if trace_out is not None and m.trace is not None:
         trace_out.parent.mkdir(parents=True, exist_ok=True)
         m.trace.save_npz(trace_out)
@@ -88,6 +93,10 @@ def run(
 
         files = plot_trace(m.trace.data(), m.trace.units, plot_dir, title=m.config.machine.name)
         summary["plots"] = [str(f) for f in files]
+    if report_dir is not None:
+        from .report.markdown import write_report
+
+        summary["report"] = str(write_report(summary, report_dir, [Path(p) for p in summary.get("plots", [])]))
     if json_out is not None:
         from .kernel import atomic_write_text
 
@@ -138,6 +147,20 @@ def plot(
     if not files:
         console.print("no axis channels in this trace")
         raise typer.Exit(1)
+
+
+@app.command()
+def schema(out_file: Optional[Path] = typer.Option(None, "--out", help="write to this file instead of printing")) -> None:
+    """Print the machine-file reference (every key: type, default, allowed range, meaning)."""
+    from .schema_doc import render
+
+    text = render()
+    if out_file is None:
+        print(text)
+    else:
+        from .kernel import atomic_write_text
+
+        atomic_write_text(out_file, text)
 
 
 @app.command()

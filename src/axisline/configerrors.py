@@ -74,6 +74,17 @@ def _walk(model: type[BaseModel], loc: tuple[Any, ...]):
     return info, tuple(parts), candidates
 
 
+def _literal_in(annotation: Any) -> tuple | None:
+    """The choices of a Literal, also inside Optional[...]."""
+    if typing.get_origin(annotation) is typing.Literal:
+        return typing.get_args(annotation)
+    for arg in typing.get_args(annotation):
+        found = _literal_in(arg)
+        if found is not None:
+            return found
+    return None
+
+
 def allowed_range(info) -> str:
     """Human form of a field's numeric constraints and choices, '' if it has none."""
     if info is None:
@@ -88,9 +99,9 @@ def allowed_range(info) -> str:
             hi = f"<= {m.le}"
         elif isinstance(m, at.Lt):
             hi = f"< {m.lt}"
-    args = typing.get_args(info.annotation)
-    if typing.get_origin(info.annotation) is typing.Literal:
-        return "one of " + ", ".join(repr(a) for a in args)
+    literal = _literal_in(info.annotation)
+    if literal is not None:
+        return "one of " + ", ".join(repr(a) for a in literal)
     if lo and hi:
         return f"{lo} and {hi}"
     return lo or hi or ""

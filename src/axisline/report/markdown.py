@@ -1,0 +1,54 @@
+"""A run report a person reads: summary, per-axis table, faults, job events, plots."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+
+def _fmt(x: Any, unit: str = "") -> str:
+    if isinstance(x, float):
+        return f"{x:.6g} {unit}".strip()
+    return f"{x} {unit}".strip()
+
+
+def write_report(summary: dict[str, Any], out_dir: str | Path, plots: list[Path]) -> Path:
+    """Write report.md into out_dir (the plots are expected in the same folder)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    s = summary
+    lines = [
+        f"# {s['machine']}",
+        "",
+        f"- machine file: `{s['file']}`, seed {s['seed']}, cycle {s['cycle_us']} µs",
+        f"- simulated {s['simulated_s']:.4f} s ({s['cycles']} cycles) in {s['wall_s']:.3f} s wall clock "
+        f"({s['realtime_factor']:.0f}x real time)",
+        f"- result: **{'completed' if s['completed'] else 'NOT completed'}**",
+        "",
+        "## Axes",
+        "",
+        "| axis | state | position | following error | max following error | max speed | error |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, a in s["axes"].items():
+        u = a["unit"]
+        err = f"{a['error_id']}: {a['error_text']}" if a["error_id"] else ""
+        lines.append(
+            f"| {name} | {a['state']} | {_fmt(a['position'], u)} | {_fmt(a['following_error'], u)} | "
+            f"{_fmt(a['max_following_error'], u)} | {_fmt(a['max_speed'], u + '/s')} | {err} |"
+        )
+    lines += ["", "## Faults", ""]
+    lines += [f"- {f}" for f in s["faults"]] or ["none"]
+    job = s["job"]
+    lines += ["", "## Job", "", f"{'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s)", ""]
+    if job["events"]:
+        lines += ["| t [s] | step | command |", "|---|---|---|"]
+        lines += [f"| {e['t']:.4f} | {e['step']} | {e['text']} |" for e in job["events"]]
+    if plots:
+        lines += ["", "## Plots", ""]
+        lines += [f"![{p.stem}]({p.name})" for p in plots]
+    path = out / "report.md"
+    from ..kernel import atomic_write_text
+
+    atomic_write_text(path, "\n".join(lines) + "\n")
+    return path

@@ -1,0 +1,83 @@
+"""The machine-file reference (docs/machine-file.md), generated from the schema itself.
+
+The pydantic models are the single source of truth for every key's type, default,
+allowed range and meaning; this renders them as tables so the documentation cannot
+drift from the code (a test compares the committed file with a fresh rendering).
+"""
+
+from __future__ import annotations
+
+import typing
+from typing import Any
+
+from pydantic import BaseModel
+from pydantic_core import PydanticUndefined
+
+from .configerrors import allowed_range
+
+
+def _type_name(annotation: Any) -> str:
+    origin = typing.get_origin(annotation)
+    args = typing.get_args(annotation)
+    if origin is typing.Literal:
+        return " \\| ".join(repr(a) for a in args)
+    if origin is typing.Annotated:
+        return _type_name(args[0])
+    if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)):
+        return " or ".join(_type_name(a) for a in args if a is not type(None)) + (" (optional)" if type(None) in args else "")
+    if origin is list:
+        return f"list of {_type_name(args[0])}" if args else "list"
+    if isinstance(annotation, type):
+        return annotation.__name__ if not issubclass(annotation, BaseModel) else f"table ({annotation.__name__})"
+    return str(annotation)
+
+
+def _default(info) -> str:
+    if info.default is PydanticUndefined:
+        return "required" if info.default_factory is None else "(table)"
+    if info.default is None:
+        return "none"
+    return repr(info.default)
+
+
+def model_table(model: type[BaseModel]) -> list[str]:
+    rows = ["| key | type | default | allowed | meaning |", "|---|---|---|---|---|"]
+    for name, info in model.model_fields.items():
+        rng = allowed_range(info)
+        desc = (info.description or "").replace("|", "\\|").replace("\n", " ")
+        rows.append(f"| `{name}` | {_type_name(info.annotation)} | {_default(info)} | {rng} | {desc} |")
+    return rows
+
+
+def render() -> str:
+    from .config import AxisEntry, MachineSection, MarkEntry, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
+    from .job import JobConfig, JobStep
+    from .plant.config import DigitalIOConfig, EncoderConfig, MaterialConfig, SpeedChangeConfig
+
+    sections = [
+        ("[machine]", MachineSection, "The machine as a whole."),
+        ("[[axis]]", AxisEntry, "One table per axis: the axis parameters (PLCopen axis, profile, position loop)."),
+        ("[axis.drive] type = \"servo\"", ServoEntry, "Servo amplifier with a velocity loop (simulated)."),
+        ("[axis.drive] type = \"stepper\"", StepperEntry, "Stepper motor with a microstepping driver (simulated)."),
+        ("[axis.encoder]", EncoderConfig, "Incremental encoder on the motor; without it the actual position is the drive's."),
+        ("[[axis.switches]]", SwitchEntry, "Reference and limit switches on the axis, read as `<axis>.<name>`."),
+        ("[material]", MaterialConfig, "The material line (web, strip) and its speed profile."),
+        ("[[material.profile]]", SpeedChangeConfig, "A speed change of the material line."),
+        ("[[marks]]", MarkEntry, "A print-mark sensor reading marks printed on the material."),
+        ("[io]", DigitalIOConfig, "Named digital inputs and outputs; an input named like a switch follows it."),
+        ("[job]", JobConfig, "The scripted main job."),
+        ("[[job.steps]]", JobStep, "One step: an axis command with its arguments, and/or a dwell."),
+        ("[trace]", TraceConfig, "The scope: what is recorded each cycle."),
+    ]
+    out = [
+        "# The machine file",
+        "",
+        "Generated from the schema by `axisline schema` (do not edit by hand; `tests/test_schema_doc.py`",
+        "fails when this file and the code disagree). A key not listed in its table, a value of the",
+        "wrong type or outside its range is refused with a message naming the key, the value and the",
+        "allowed range.",
+        "",
+    ]
+    for title, model, text in sections:
+        out += [f"## {title}", "", text, ""] + model_table(model) + [""]
+    return "\n".join(out)
