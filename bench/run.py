@@ -11,9 +11,7 @@ Timings are printed, never asserted: they belong here, not in the unit tests.
 from __future__ import annotations
 
 import random
-import statistics
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))

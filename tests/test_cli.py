@@ -1,14 +1,12 @@
 """The `axisline` command: exit codes, outputs, serve's clean stop."""
 
 import json
-import os
 import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 from typer.testing import CliRunner
 

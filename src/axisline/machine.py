@@ -29,11 +29,10 @@ import numpy as np
 from .config import AxisEntry, MachineConfig, load_machine_file
 from .configerrors import ConfigError
 from .job import JobRunner
-from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace, WallClock
-from .motion.axis import Axis, AxisConfig, AxisState
+from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace
+from .motion.axis import Axis, AxisConfig, AxisState, BufferMode, Direction
 from .motion.homing import DirectHoming, SwitchHoming
-from .plant.drives import ServoDrive, StepperDrive
-from .plant.sensors import Edge
+from .plant.drives import StepperDrive
 
 _ERROR_STOP = AxisState.ERROR_STOP
 _DISABLED = AxisState.DISABLED
@@ -106,7 +105,6 @@ class Machine:
         self.config = config
         self.source = source
         self.seed = config.machine.seed if seed is None else seed
-        self.rng = np.random.default_rng(self.seed)
         period_us = config.machine.cycle_us
         self.clock = clock if clock is not None else SimulatedClock(period_us)
         self.period = self.clock.period
@@ -164,29 +162,26 @@ class Machine:
         axis, drive, dt = unit.axis, unit.drive, self.period
         if isinstance(drive, StepperDrive):
             # open loop: the pulse output follows the set point, the motor follows the pulses
-            def actuate(cycle: int) -> None:
-                if (axis.state is not _DISABLED) is not drive.enabled:
-                    drive.enable(not drive.enabled)
+            def command() -> None:
                 drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
-                drive.step(dt)
 
-        elif unit.config.drive.type == "servo" and unit.config.drive.command == "analog":
+        elif unit.config.drive.command == "analog":
             volts_per_velocity = 1.0 / drive.velocity_per_volt
 
             # the classic +-10 V interface: the amplifier's offset, drift and gain errors apply
-            def actuate(cycle: int) -> None:
-                if (axis.state is not _DISABLED) is not drive.enabled:
-                    drive.enable(not drive.enabled)
+            def command() -> None:
                 drive.command_voltage(unit.velocity_output * volts_per_velocity)
-                drive.step(dt)
 
         else:
 
-            def actuate(cycle: int) -> None:
-                if (axis.state is not _DISABLED) is not drive.enabled:
-                    drive.enable(not drive.enabled)
+            def command() -> None:
                 drive.command_velocity(unit.velocity_output)
-                drive.step(dt)
+
+        def actuate(cycle: int) -> None:
+            if (axis.state is not _DISABLED) is not drive.enabled:
+                drive.enable(not drive.enabled)  # the amplifier follows the axis' power
+            command()
+            drive.step(dt)
 
         return actuate
 
@@ -401,26 +396,12 @@ def _getter(obj: Any, name: str) -> Callable[[], Any]:
 _STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...
 
 
-def _state_code(state: AxisState) -> int:
-    return _STATE_CODE[state]
-
-
-_BUFFER = {"aborting": "ABORTING", "buffered": "BUFFERED"}
-_DIRECTION = {"shortest": "SHORTEST", "positive": "POSITIVE", "negative": "NEGATIVE", "current": "CURRENT"}
-
-
 def _axis_kwargs(command: str, kwargs: dict[str, Any]) -> dict[str, Any]:
-    """Machine-file words -> the axis API's enums."""
-    from .motion import axis as axis_mod
-
+    """Machine-file words ("buffered", "shortest") -> the axis API's enums."""
     out = dict(kwargs)
-    if "buffer_mode" in out and isinstance(out["buffer_mode"], str):
-        out["buffer_mode"] = getattr(axis_mod.BufferMode, _BUFFER[out["buffer_mode"]])
+    if isinstance(out.get("buffer_mode"), str):
+        out["buffer_mode"] = BufferMode[out["buffer_mode"].upper()]
     if command == "move_absolute" and isinstance(out.get("direction"), str):
-        out["direction"] = getattr(axis_mod.Direction, _DIRECTION[out["direction"]])
+        out["direction"] = Direction[out["direction"].upper()]
     return out
 
-
-def wall_clock_machine(path: str | Path) -> Machine:
-    cfg = load_machine_file(path)
-    return Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(path))
