@@ -149,3 +149,13 @@ def test_report_folder_holds_report_summary_trace_and_plots(tmp_path):
     md = (tmp_path / "rep" / "report.md").read_text()
     assert "**completed**" in md and "![axis_x](axis_x.png)" in md
     assert "| x | STANDSTILL |" in md
+
+
+def test_a_longer_duration_on_the_command_line_is_recorded_whole(tmp_path):
+    # the scope is sized from the duration: --duration beyond the file's must not truncate it
+    f = tmp_path / "short.toml"
+    f.write_text((EXAMPLES / "positioning.toml").read_text().replace("duration = 20.0", "duration = 1.0").replace("capacity = 30000", "capacity = 100000"))
+    res = runner.invoke(app, ["run", str(f), "--duration", "3.0", "--trace", str(tmp_path / "t.npz"), "--quiet"])
+    assert res.exit_code == 0
+    rec = Trace.load_npz(tmp_path / "t.npz")
+    assert len(rec.data()["t"]) == 3000 and not rec.overflowed

@@ -71,7 +71,7 @@ def run(
     if duration is not None and not duration > 0:
         console.print(f"[red]--duration[/red] = {duration}: must be > 0")
         raise typer.Exit(2)
-    m = _load(machine, seed=seed)
+    m = _load(machine, seed=seed, duration=duration)
     if quiet or not sys.stderr.isatty():
         result = m.run(duration)
     else:

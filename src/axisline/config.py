@@ -91,7 +91,10 @@ class MarkEntry(PrintMarkConfig):
 
 class TraceConfig(_Strict):
     enabled: bool = True
-    capacity: int = Field(600_000, ge=1, le=50_000_000, description="samples kept")
+    capacity: int = Field(
+        200_000, ge=1, le=50_000_000,
+        description="samples kept per channel (a linear trace allocates no more than machine.duration fills)",
+    )
     decimation: int = Field(1, ge=1, le=10_000, description="record every n-th cycle")
     mode: Literal["linear", "ring"] = Field("linear", description="linear: stop when full; ring: keep the newest")
     channels: list[str] | Literal["all"] = Field("all", description="axis.signal names, or all")

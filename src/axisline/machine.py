@@ -26,7 +26,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .config import AxisEntry, MachineConfig, load_machine_file
+from .config import AxisEntry, MachineConfig, load_machine_file, parse_machine
 from .configerrors import ConfigError
 from .job import JobRunner
 from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace
@@ -137,8 +137,16 @@ class Machine:
     # -- construction ---------------------------------------------------------------
 
     @classmethod
-    def from_file(cls, path: str | Path, *, seed: int | None = None, clock: Clock | None = None) -> "Machine":
-        return cls(load_machine_file(path), seed=seed, clock=clock, source=str(path))
+    def from_file(
+        cls, path: str | Path, *, seed: int | None = None, clock: Clock | None = None, duration: float | None = None
+    ) -> "Machine":
+        """Build from a machine file; `duration` overrides machine.duration (it sizes the scope)."""
+        config = load_machine_file(path)
+        if duration is not None:
+            data = config.model_dump()
+            data["machine"]["duration"] = duration
+            config = parse_machine(data, f"{path} (with --duration {duration:g})")
+        return cls(config, seed=seed, clock=clock, source=str(path))
 
     def _add_axis(self, entry: AxisEntry) -> None:
         # the axis sees only its own parameters, not the plant tables beside them
@@ -213,7 +221,10 @@ class Machine:
 
     def _make_trace(self) -> Trace:
         tc = self.config.trace
-        tr = Trace(tc.capacity, decimation=tc.decimation, mode=tc.mode, period_us=self.clock.period_us)
+        capacity = tc.capacity
+        if tc.mode == "linear":  # never allocate more than the longest run can fill
+            capacity = min(capacity, round(self.config.machine.duration / self.period) // tc.decimation + 1)
+        tr = Trace(capacity, decimation=tc.decimation, mode=tc.mode, period_us=self.clock.period_us)
         available: dict[str, tuple[Callable[[], Any], str, type]] = {}
         for name, u in self.units.items():
             ax, dr, unit = u.axis, u.drive, u.config.unit
