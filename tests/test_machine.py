@@ -306,3 +306,13 @@ def test_mark_jitter_follows_the_seed(tmp_path):
 def test_homing_on_a_switch_the_axis_does_not_have_is_named(tmp_path):
     with pytest.raises(ConfigError, match="switch = 'home'"):
         plant_machine(tmp_path, PLANT.replace('switch = "ref"', 'switch = "home"'))
+
+
+def test_logic_task_runs_at_its_sub_rate():
+    steps = [{"axis": "x", "command": "power", "on": True}] + [
+        {"axis": "x", "command": "move_relative", "distance": 1.0, "wait": "none"} for _ in range(3)
+    ]
+    m = Machine(parse_machine(machine_data(machine={"logic_every": 4}, job={"steps": steps})))
+    m.scheduler.run(20)
+    # one step per logic cycle, and logic cycles are 0, 4, 8, 12 (T = 1 ms)
+    assert [round(e.t * 1000) for e in m.job.events] == [0, 4, 8, 12]

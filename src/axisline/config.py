@@ -49,6 +49,9 @@ class MachineSection(_Strict):
     cycle_us: int = Field(1000, ge=MIN_PERIOD_US, le=MAX_PERIOD_US, description="cycle period T in microseconds")
     seed: int = Field(0, ge=0, le=2**63 - 1, description="seed of the simulated plant's randomness")
     duration: float = Field(10.0, gt=0.0, le=7 * 86400.0, description="longest simulated run, seconds")
+    logic_every: int = Field(
+        1, ge=1, le=1000, description="the logic task (job, device logic) runs every n-th cycle, e.g. 4 as the CLM's"
+    )
     personality: Literal["none"] = Field("none", description="device personality (the device issues add theirs)")
 
 

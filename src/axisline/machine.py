@@ -127,7 +127,7 @@ class Machine:
         self._axes = tuple((n, u.axis) for n, u in self.units.items())
         self._reported: dict[str, str] = {}
         self.job = JobRunner(config.job, self.period, self._issue)
-        self.scheduler.add_task("job", self.job.tick, Stage.LOGIC)
+        self.scheduler.add_task("job", self.job.tick, Stage.LOGIC, every=config.machine.logic_every)
         self.scheduler.add_task("faults", self._watch_faults, Stage.RECORD)
         self.trace: Trace | None = None
         if config.trace.enabled:
