@@ -3,7 +3,9 @@
 - profiles: jerk-limited planning time next to Ruckig's (same random requests), and the
   duration ratio (time-optimality: must print 1.000000);
 - cycle: cost of one cycle of one axis in a move (median, microseconds), and simulated
-  seconds per wall-clock second for a 4-axis machine at T = 1 ms (reference: real time).
+  seconds per wall-clock second for a 4-axis machine at T = 1 ms (reference: real time);
+- sync: cost of one cycle of a coupled slave (gear, cam of 2500 points, cam of laws), next
+  to a slave holding still.
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
@@ -18,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_cycle import bench_cycle  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
+from bench_sync import bench_sync  # noqa: E402
 
 
 def main() -> None:
@@ -26,6 +29,8 @@ def main() -> None:
     bench_profiles()
     print()
     bench_cycle()
+    print()
+    bench_sync()
 
 
 if __name__ == "__main__":

@@ -84,6 +84,8 @@ class CamFollower:
             if not math.isfinite(value):
                 raise ValueError(f"{name} must be finite, got {value!r}")
         self.master = master
+        # masters of motion.master update once per cycle however many slaves read them
+        self._update_master = getattr(master, "update", None)
         self.curve = curve
         self.master_offset = float(master_offset)
         self.slave_offset = float(slave_offset)
@@ -164,6 +166,8 @@ class CamFollower:
     # -- per cycle -----------------------------------------------------------------------
 
     def sample(self, cycle: int) -> tuple[float, float, float]:
+        if self._update_master is not None:
+            self._update_master(cycle)
         m = self.master
         x = m.position - self.master_offset
         vm, am = m.velocity, m.acceleration

@@ -1,0 +1,1 @@
+"""Device personalities: each industrial controller on top of the one motion kernel."""

@@ -1,0 +1,226 @@
+"""The 256-bit field of the I/O driver (manual §3.10.3-3.10.4, §4.5; wago.md §5.1-5.4).
+
+Source bits 0..127 are written by the function units that produce them (the device each
+tick: On_Target, Busy, ..., Input1..6, KBUS_CTRLx_y from the control bytes). Target bits
+128..255 have no value of their own: a target reads the bit its pointer names, the pointer
+being the configuration byte at the target's own number (Ptr_Stop1_N at address 194 = 0x30:
+Stop1_N follows Input1). A target may point at another target, at most four levels deep
+(error 1245 IO_RECURSIVE_LINK beyond).
+
+This is the seam for bit linking: `BitTable` resolves the FACTORY_DEFAULT links and any
+relinking in the configuration, keeps the values of bits linked to MZERO/MONE (writable by
+mailbox and run program, WR_BIT) and of the user bits. Still to come (second engineer): the
+eight filters/timers/counters FILT1..8 (`filter_output` hook; until then a filter passes its
+input through, the function "0 no filtering"), their variables, the data recorder trigger.
+
+Bit numbers are the manual's names as constants of `Bit` (e.g. `Bit.Stop_N_ACK == 0x11`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from enum import IntEnum
+
+from axisline.devices.wago672.config_table import ConfigTable
+from axisline.devices.wago672.errors import WagoError
+
+__all__ = ["Bit", "BitTable", "MAX_NESTING"]
+
+MAX_NESTING = 4  # "the maximum number of nesting levels is four (4)" (§3.10.4)
+
+
+class Bit(IntEnum):
+    """Bit numbers of the bit field (§4.5, wago.md §5.2)."""
+
+    # ---- source bits (0 .. 127)
+    ZERO = 0x00
+    ONE = 0x01
+    MZERO = 0x02
+    MONE = 0x03
+    Reset = 0x04
+    Warning = 0x05
+    KBUS_Active = 0x06
+    On_Target = 0x08
+    Busy = 0x09
+    StandStill = 0x0A
+    On_Speed = 0x0B
+    Direction = 0x0C
+    Reference_OK = 0x0D
+    PreCalc_ACK = 0x0E
+    Error = 0x0F
+    Ready = 0x10
+    Stop_N_ACK = 0x11
+    Start_ACK = 0x12
+    Command_ACK_1 = 0x13  # M_Positioning_ACK
+    Command_ACK_2 = 0x14  # M_Program_ACK
+    Command_ACK_3 = 0x15  # M_Reference_ACK
+    Command_ACK_4 = 0x16  # M_Jog_ACK
+    Command_ACK_5 = 0x17  # M_DriveByMbx_ACK
+    Break = 0x18  # the manual's spelling of the Brake bit: 0 braked, 1 vented
+    ERR_Code = 0x19  # blink-code signal of LED A
+    SetupSpeed_Active_ACK = 0x1A
+    Program_Running = 0x1B
+    Ramp_Up = 0x1C
+    Ramp_Down = 0x1D
+    Trace_Stored = 0x20
+    Encoder_A = 0x26
+    Encoder_B = 0x27
+    Err_Range_Neg = 0x28
+    Err_Range_Pos = 0x29
+    Err_Range = 0x2A
+    Encoder_Z_Toggle = 0x2E
+    CAM9 = 0x2F
+    Input1 = 0x30
+    Input2 = 0x31
+    Input3 = 0x32
+    Input4 = 0x33
+    Input5 = 0x34
+    Input6 = 0x35
+    Input7 = 0x36
+    Input8 = 0x37
+    CAM1 = 0x38
+    CAM2 = 0x39
+    CAM3 = 0x3A
+    CAM4 = 0x3B
+    CAM5 = 0x3C
+    CAM6 = 0x3D
+    CAM7 = 0x3E
+    CAM8 = 0x3F
+    KBUS_CTRL1_0 = 0x40
+    KBUS_CTRL2_0 = 0x48
+    KBUS_CTRL3_0 = 0x50
+    # ---- target bits (128 .. 255)
+    KBUS_ST1_0 = 0x80
+    KBUS_ST2_0 = 0x88
+    KBUS_ST3_0 = 0x90
+    KBUS_ST3_6 = 0x96
+    KBUS_ST3_7 = 0x97
+    UserBit_0 = 0x98
+    OUT1 = 0xA0
+    OUT2 = 0xA1
+    FILT1 = 0xA8
+    Enable = 0xB0
+    Stop2_N = 0xB1
+    Start = 0xB2
+    Command_1 = 0xB3  # M_Positioning
+    Command_2 = 0xB4  # M_Program
+    Command_3 = 0xB5  # M_Reference
+    Command_4 = 0xB6  # M_Jog
+    Command_5 = 0xB7  # M_DriveByMbx
+    Enable_Drive = 0xB8
+    Reset_Quit = 0xB9
+    Direction_Pos = 0xBA
+    Direction_Neg = 0xBB
+    Set_Reference = 0xBC
+    PreCalc = 0xBD
+    SetupSpeed_Active = 0xBE
+    Error_Quit = 0xBF
+    LimitSwitch_Pos = 0xC0
+    LimitSwitch_Neg = 0xC1
+    Stop1_N = 0xC2
+    Brake_Manual = 0xC3
+    Freq_Range_Sel_0 = 0xC4
+    Freq_Range_Sel_1 = 0xC5
+    Acc_Range_Sel_0 = 0xC6
+    Acc_Range_Sel_1 = 0xC7
+    Set_Actual_Pos = 0xC8
+    Jog_Pos = 0xCA
+    Jog_Neg = 0xCB
+    LED_B = 0xD0
+    LED_C = 0xD1
+    LED_D = 0xD2
+    LED_A = 0xD3
+    LED_E = 0xD4
+    LED_F = 0xD5
+    Error_Set = 0xDD
+    TRACE_TRIGGER = 0xDE
+    Trace_Armed = 0xDF
+
+
+# targets that have a pointer in the configuration table (128 .. 223)
+_POINTER_TARGETS = range(128, 224)
+
+
+class BitTable:
+    """256 bits by number: sources stored, targets resolved through their pointers.
+
+    `filter_output(n, input) -> bool` computes FILTn (n = 1..8) from its input; the
+    placeholder passes the input through (filter function 0).
+    """
+
+    def __init__(self, config: ConfigTable) -> None:
+        self.config = config
+        self._src = bytearray(128)
+        self._src[Bit.ONE] = 1
+        self._src[Bit.MONE] = 1
+        self._marker = bytearray(256)  # values of targets linked to MZERO / MONE
+        self.filter_output: Callable[[int, bool], bool] = lambda n, value: value
+        self.reset()
+
+    def reset(self) -> None:
+        """After a reset: MZERO-linked bits are 0, MONE-linked bits are 1 (§3.10.4.1)."""
+        for t in _POINTER_TARGETS:
+            self._marker[t] = 1 if self.config.get(t) == Bit.MONE else 0
+
+    # ---- sources (the device, and later the filters/cams/recorder, write these)
+    def set_source(self, n: int, value: bool) -> None:
+        if not 0 <= n < 128:
+            raise WagoError(1241, f"source bit {n} is outside 0 .. 127")
+        if n in (Bit.ZERO, Bit.ONE, Bit.MZERO, Bit.MONE):
+            raise WagoError(1243, f"bit {n} is a constant and cannot be written")
+        self._src[n] = 1 if value else 0
+
+    def set_byte(self, first: int, value: int) -> None:
+        """Eight source bits first .. first+7 from one byte (control bytes -> KBUS_CTRLx_y)."""
+        for i in range(8):
+            self._src[first + i] = (value >> i) & 1
+
+    # ---- reading
+    def read(self, n: int) -> bool:
+        """Value of bit n (0 .. 255): a source, or the source a target's pointer chain ends at."""
+        if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n <= 255:
+            raise WagoError(1241, f"bit number {n!r} is outside 0 .. 255")
+        return self._resolve(n, 0)
+
+    def _resolve(self, n: int, depth: int) -> bool:
+        if n < 128:
+            return bool(self._src[n])
+        if n >= 224:
+            return False  # no pointer (unused or internal bits)
+        ptr = self.config.get(n)
+        if ptr in (Bit.MZERO, Bit.MONE):
+            return bool(self._marker[n])
+        if 168 <= n <= 175:  # FILTn: the pointer selects the filter input, reading gives the output
+            value = self._resolve(ptr, depth + 1) if depth < MAX_NESTING else self._too_deep(n)
+            return bool(self.filter_output(n - 167, value))
+        if ptr >= 128:
+            if depth + 1 >= MAX_NESTING or ptr == n:
+                return self._too_deep(n)
+            return self._resolve(ptr, depth + 1)
+        return bool(self._src[ptr])
+
+    def _too_deep(self, n: int) -> bool:
+        raise WagoError(1245, f"bit {n:#04x}: the chain of linked bits is deeper than {MAX_NESTING} levels")
+
+    def byte(self, first: int) -> int:
+        """Eight bits first .. first+7 as one byte (KBUS_ST1_0.. -> S1, ...)."""
+        v = 0
+        for i in range(8):
+            if self.read(first + i):
+                v |= 1 << i
+        return v
+
+    # ---- writing (mailbox WR_BIT, run program)
+    def writable(self, n: int) -> bool:
+        return 128 <= n < 224 and self.config.get(n) in (Bit.MZERO, Bit.MONE)
+
+    def write(self, n: int, value: bool) -> None:
+        """Set a target bit that is linked to MZERO or MONE (else 1242; n > 255: 1241)."""
+        if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n <= 255:
+            raise WagoError(1241, f"bit number {n!r} is outside 0 .. 255")
+        if not self.writable(n):
+            raise WagoError(1242, f"bit {n:#04x} is not linked to MZERO or MONE and cannot be set")
+        self._marker[n] = 1 if value else 0
+
+    def sources(self) -> bytes:
+        return bytes(self._src)
