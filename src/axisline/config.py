@@ -8,6 +8,7 @@
     [material]           optional: the material line (web, strip) with its speed profile and slip
     [[marks]]            optional: print-mark sensors on the material
     [io]                 optional: named digital inputs and outputs
+    [[master]], [[cam]]  optional: masters and cams the job couples axes to (sync_setup.py)
     [job]                the scripted main job: repeat, [[job.steps]]
     [trace]              the scope: capacity, decimation, channels
 
@@ -27,6 +28,7 @@ from .configerrors import ConfigError, explain
 from .job import JobConfig
 from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
 from .motion.axis import AxisConfig
+from .sync_setup import CamEntry, MasterEntry
 from .plant.config import (
     DigitalIOConfig,
     EncoderConfig,
@@ -109,6 +111,8 @@ class MachineConfig(_Strict):
     material: MaterialConfig | None = Field(None, description="the material line, if the machine has one")
     marks: list[MarkEntry] = Field(default_factory=list, max_length=16, description="print-mark sensors on the material")
     io: DigitalIOConfig = Field(default_factory=DigitalIOConfig, description="named digital inputs and outputs")
+    master: list[MasterEntry] = Field(default_factory=list, max_length=16, description="masters slaves can follow")
+    cam: list[CamEntry] = Field(default_factory=list, max_length=64, description="cam curves")
     job: JobConfig = Field(default_factory=JobConfig)
     trace: TraceConfig = Field(default_factory=TraceConfig)
 
@@ -128,7 +132,30 @@ class MachineConfig(_Strict):
         for n in marks:
             if marks.count(n) > 1:
                 raise ValueError(f"marks name {n!r} is used twice")
+        masters = [m.name for m in self.master]
+        cams = [c.name for c in self.cam]
+        for kind, seen in (("master", masters), ("cam", cams)):
+            for n in seen:
+                if seen.count(n) > 1:
+                    raise ValueError(f"{kind} name {n!r} is used twice")
+        for m in self.master:
+            if m.axis is not None and m.axis not in names:
+                raise ValueError(f"master {m.name!r}: axis = {m.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")
+            if m.kind == "axis_encoder" and next(a for a in self.axis if a.name == m.axis).encoder is None:
+                raise ValueError(f"master {m.name!r}: axis {m.axis!r} has no [axis.encoder]")
+            if m.kind == "wheel" and self.material is None:
+                raise ValueError(f"master {m.name!r}: a measuring wheel needs a [material] line")
         for i, step in enumerate(self.job.steps):
+            if step.command in ("gear_in", "gear_in_pos", "cam_in", "set_master_velocity") and step.master not in masters:
+                raise ValueError(f"job.steps[{i}].master = {step.master!r}: no such master (masters: {', '.join(masters) or 'none'})")
+            if step.command == "cam_in" and step.cam not in cams:
+                raise ValueError(f"job.steps[{i}].cam = {step.cam!r}: no such cam (cams: {', '.join(cams) or 'none'})")
+            if step.command in ("gear_in", "gear_in_pos") and (step.numerator is None or step.denominator is None):
+                raise ValueError(f"job.steps[{i}]: {step.command} needs numerator and denominator")
+            if step.command == "set_master_velocity":
+                if step.velocity is None:
+                    raise ValueError(f"job.steps[{i}]: set_master_velocity needs velocity")
+                continue
             if step.command is not None and step.axis not in names:
                 raise ValueError(f"job.steps[{i}].axis = {step.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")
             if step.command == "home" and step.method == "switch" and f"{step.axis}.{step.switch}" not in switches:

@@ -27,11 +27,23 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "jog": ("direction",),
     "reset": (),
     "home": ("method", "position", "velocity", "direction", "switch", "acceleration", "max_distance"),
+    # couplings (sync_setup.py)
+    "gear_in": ("master", "numerator", "denominator"),
+    "gear_in_pos": ("master", "numerator", "denominator", "master_sync_position", "slave_sync_position"),
+    "cam_in": ("master", "cam", "coupling", "synchronous", "master_offset"),
+    "cam_out": ("decoupling", "braking", "standstill"),
+    "sync_out": ("deceleration",),
+    "set_master_velocity": ("master", "velocity"),  # a step with master = ..., no axis
 }
 
+# commands given to a master rather than an axis
+MASTER_COMMANDS = ("set_master_velocity",)
 
-_ARGUMENTS = ("on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode",
-              "direction", "relative", "method", "switch", "max_distance")
+
+_ARGUMENTS = ("master", "on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode",
+              "direction", "relative", "method", "switch", "max_distance", "numerator", "denominator",
+              "master_sync_position", "slave_sync_position", "cam", "coupling", "synchronous", "master_offset",
+              "decoupling", "braking", "standstill")
 
 
 class JobStep(BaseModel):
@@ -56,6 +68,18 @@ class JobStep(BaseModel):
     method: Literal["direct", "switch"] | None = Field(None, description="homing: set the position here, or search a switch")
     switch: str | None = Field(None, description="homing: the axis' switch to search")
     max_distance: float | None = Field(None, gt=0.0, description="homing: give up after this search distance")
+    master: str | None = Field(None, description="couplings: the master (set_master_velocity: the master addressed)")
+    numerator: int | None = Field(None, ge=-(2**62), le=2**62, description="gear: slave counts ...")
+    denominator: int | None = Field(None, ge=1, le=2**62, description="gear: ... per master counts")
+    master_sync_position: float | None = Field(None, description="gear_in_pos: master position of synchronism")
+    slave_sync_position: float | None = Field(None, description="gear_in_pos: slave position at that master position")
+    cam: str | None = Field(None, description="cam_in: the cam")
+    coupling: float | None = Field(None, description="cam_in: coupling position M_E in the master cycle")
+    synchronous: float | None = Field(None, description="cam_in: synchronous position M_S in the master cycle")
+    master_offset: float | None = Field(None, description="cam_in: master position of curve position 0")
+    decoupling: float | None = Field(None, description="cam_out: decoupling position M_A in the master cycle")
+    braking: float | None = Field(None, description="cam_out: braking position M_B in the master cycle")
+    standstill: float | None = Field(None, description="cam_out: standstill position S_0 of the slave")
 
     def arguments(self) -> dict[str, Any]:
         """Keyword arguments for the axis command (only those given)."""
@@ -110,6 +134,10 @@ class JobRunner:
         self.events.append(JobEvent(cycle * self.period, self.index, self.failed))
         self.finished = True
 
+    @staticmethod
+    def _label(step: JobStep) -> str:
+        return f"{step.axis or step.master}.{step.command}"
+
     def tick(self, cycle: int) -> None:
         """Advance the job; at most one new command per cycle."""
         if self.finished:
@@ -119,18 +147,18 @@ class JobRunner:
             self._started = True
             if step.command is not None:
                 h = self.issue(step.axis, step.command, step.arguments())
-                self.events.append(JobEvent(cycle * self.period, self.index, f"{step.axis}.{step.command}"))
+                self.events.append(JobEvent(cycle * self.period, self.index, f"{self._label(step)}"))
                 if getattr(h, "error", False):  # rejected at once
-                    self._fail(cycle, f"{step.axis}.{step.command}: error {h.error_id}: {h.error_text}")
+                    self._fail(cycle, f"{self._label(step)}: error {h.error_id}: {h.error_text}")
                     return
                 self._handle = h if step.wait == "done" else None
         h = self._handle
         if h is not None:
             if getattr(h, "error", False):
-                self._fail(cycle, f"{step.axis}.{step.command}: error {h.error_id}: {h.error_text}")
+                self._fail(cycle, f"{self._label(step)}: error {h.error_id}: {h.error_text}")
                 return
             if getattr(h, "aborted", False):
-                self._fail(cycle, f"{step.axis}.{step.command} was aborted")
+                self._fail(cycle, f"{self._label(step)} was aborted")
                 return
             # a velocity command is "done" for the job once it runs at its velocity
             if not (getattr(h, "done", False) or getattr(h, "in_velocity", False)):

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import time
+import zlib
 from collections import deque
 from dataclasses import dataclass, field
 from functools import partial
@@ -31,7 +32,10 @@ from .configerrors import ConfigError
 from .job import JobRunner
 from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace
 from .motion.axis import Axis, AxisConfig, AxisState, BufferMode, Direction
+from .motion.camsync import CamFollower, CamState
+from .motion.gear import Gear, GearInPos
 from .motion.homing import DirectHoming, SwitchHoming
+from .sync_setup import SyncHandle, build_cam, build_master
 from .plant.drives import StepperDrive
 
 _ERROR_STOP = AxisState.ERROR_STOP
@@ -113,13 +117,14 @@ class Machine:
         self.units: dict[str, AxisUnit] = {}
         self.sensors: dict[str, Sensor] = {}  # "<axis>.<switch>" and print-mark sensors
         self.faults: list[str] = []
-        for entry in config.axis:
+        # axes that are masters get their set point first, so their slaves see this cycle's
+        master_axes = {m.axis for m in config.master if m.kind == "axis"}
+        for entry in sorted(config.axis, key=lambda a: a.name not in master_axes):
             self._add_axis(entry)
         self.material = config.material.build() if config.material is not None else None
-        for i, mark in enumerate(config.marks):
-            # each random source gets its own stream, so adding one leaves the others' alone
-            rng = np.random.default_rng([self.seed, 1000 + i])
-            self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, rng))
+        for mark in config.marks:
+            self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, self.child_rng(f"marks:{mark.name}")))
+        self._add_sync(config)
         self.io = config.io.build()
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
@@ -135,6 +140,41 @@ class Machine:
             self.scheduler.add_task("scope", self.trace.record, Stage.RECORD)
 
     # -- construction ---------------------------------------------------------------
+
+    def child_rng(self, name: str) -> np.random.Generator:
+        """A random stream of its own for each named source: adding one leaves the others alone."""
+        return np.random.default_rng([self.seed, zlib.crc32(name.encode())])
+
+    def _add_sync(self, config: MachineConfig) -> None:
+        """Masters and cams of the machine file (sync_setup.py)."""
+        base = Path(self.source).parent if self.source else Path.cwd()
+        self.cams = {c.name: build_cam(c, base) for c in config.cam}
+        self.masters = {}
+        wheels = []
+        for entry in config.master:
+            master, wheel = build_master(entry, self)
+            self.masters[entry.name] = master
+            if wheel is not None:
+                wheels.append(wheel)
+        self._followers: dict[str, CamFollower] = {}
+        if wheels:
+            sample = tuple(w.sample for w in wheels)
+
+            def sample_wheels(cycle: int) -> None:
+                for f in sample:
+                    f()
+
+            self.scheduler.add_task("wheels", sample_wheels, Stage.INPUTS)
+        if self.masters:
+            updates = tuple(m.update for m in self.masters.values())
+
+            # after the axes: slaves update their master themselves (once per cycle); this
+            # keeps masters without a slave current for the scope
+            def update_masters(cycle: int) -> None:
+                for f in updates:
+                    f(cycle)
+
+            self.scheduler.add_task("masters", update_masters, Stage.SETPOINTS)
 
     @classmethod
     def from_file(
@@ -217,6 +257,9 @@ class Machine:
             out[f"io.{name}"] = (lambda name=name: self.io.read(name), "", bool)
         for name in self.config.io.outputs:
             out[f"io.{name}"] = (lambda name=name: self.io.output(name), "", bool)
+        for name, master in self.masters.items():
+            out[f"{name}.position"] = (_getter(master, "position"), "", float)
+            out[f"{name}.velocity"] = (_getter(master, "velocity"), "/s", float)
         return out
 
     def _make_trace(self) -> Trace:
@@ -265,10 +308,53 @@ class Machine:
 
     def _issue(self, axis: str, command: str, kwargs: dict[str, Any]) -> Any:
         """Give an axis command from inside the cycle (job, personality)."""
+        if command in _SYNC_COMMANDS:
+            try:
+                return self._sync_command(axis, command, kwargs)
+            except ValueError as e:  # an infeasible or bad request: the step fails, the cycle goes on
+                return _Failed(str(e))
         ax = self.units[axis].axis
         if command == "home":
             return ax.home(self._homing(axis, kwargs))
         return getattr(ax, command)(**_axis_kwargs(command, kwargs))
+
+    def _sync_command(self, axis: str | None, command: str, kw: dict[str, Any]) -> Any:
+        """Couplings of the job (gear, cam) and master commands."""
+        if command == "set_master_velocity":
+            master = self.masters[kw["master"]]
+            if hasattr(master, "set_velocity"):
+                master.set_velocity(kw["velocity"])
+                return SyncHandle(None, lambda: master.in_velocity)
+            master.set_speed(kw["velocity"])
+            return SyncHandle(None, lambda: True)
+        ax = self.units[axis].axis
+        if command == "gear_in":
+            gear = Gear(self.masters[kw["master"]], ax, kw["numerator"], kw["denominator"])
+            return SyncHandle(gear.gear_in(), lambda: gear.in_gear)
+        if command == "gear_in_pos":
+            master = self.masters[kw["master"]]
+            # plan the approach for the speed the master is heading for: a master still ramping
+            # up then only makes the slave slower than planned, never faster
+            nominal = max(abs(master.velocity), abs(getattr(master, "target_velocity", 0.0)))
+            gear = GearInPos(
+                master, ax, kw["numerator"], kw["denominator"],
+                master_sync_position=kw["master_sync_position"], slave_sync_position=kw["slave_sync_position"],
+                master_velocity=nominal or None,
+            )
+            return SyncHandle(gear.gear_in(), lambda: gear.in_gear)
+        if command == "cam_in":
+            follower = CamFollower(self.masters[kw["master"]], self.cams[kw["cam"]], master_offset=kw.get("master_offset", 0.0))
+            follower.couple(ax.command_position, kw.get("coupling"), kw.get("synchronous"))
+            self._followers[axis] = follower
+            return SyncHandle(ax.start_sync(follower), lambda: follower.synchronous)
+        if command == "cam_out":
+            follower = self._followers.get(axis)
+            if follower is None or ax.state is not AxisState.SYNCHRONIZED_MOTION:
+                raise ValueError(f"cam_out: axis {axis!r} follows no cam")
+            follower.decouple(kw["decoupling"], kw["braking"], kw["standstill"])
+            return SyncHandle(ax.active_command, lambda: follower.state is CamState.DECOUPLED)
+        # sync_out: leave the master; the axis halts with its ramp
+        return ax.end_sync(kw.get("deceleration"))
 
     def _homing(self, axis: str, kw: dict[str, Any]):
         """A homing procedure from job-step words (method = direct | switch)."""
@@ -405,6 +491,20 @@ def _getter(obj: Any, name: str) -> Callable[[], Any]:
 
 
 _STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...
+
+
+_SYNC_COMMANDS = ("gear_in", "gear_in_pos", "cam_in", "cam_out", "sync_out", "set_master_velocity")
+
+
+class _Failed:
+    """Handle of a command refused before it reached an axis (for example an infeasible gear-in-position)."""
+
+    done = aborted = False
+    error = True
+    error_id = -1
+
+    def __init__(self, text: str) -> None:
+        self.error_text = text
 
 
 def _axis_kwargs(command: str, kwargs: dict[str, Any]) -> dict[str, Any]:

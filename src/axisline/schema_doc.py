@@ -52,7 +52,8 @@ def model_table(model: type[BaseModel]) -> list[str]:
 def render() -> str:
     from .config import AxisEntry, MachineSection, MarkEntry, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
     from .job import JobConfig, JobStep
-    from .plant.config import DigitalIOConfig, EncoderConfig, MaterialConfig, SpeedChangeConfig
+    from .plant.config import DigitalIOConfig, EncoderConfig, MaterialConfig, MeasuringWheelConfig, SpeedChangeConfig
+    from .sync_setup import CamEntry, MasterEntry
 
     sections = [
         ("[machine]", MachineSection, "The machine as a whole."),
@@ -65,6 +66,9 @@ def render() -> str:
         ("[[material.profile]]", SpeedChangeConfig, "A speed change of the material line."),
         ("[[marks]]", MarkEntry, "A print-mark sensor reading marks printed on the material."),
         ("[io]", DigitalIOConfig, "Named digital inputs and outputs; an input named like a switch follows it."),
+        ("[[master]]", MasterEntry, "A master that slaves follow (gear_in, gear_in_pos, cam_in job steps)."),
+        ("[master.wheel]", MeasuringWheelConfig, "kind = \"wheel\": a measuring wheel rolling on the material."),
+        ("[[cam]]", CamEntry, "A cam curve over one master cycle (`segments` rows: master_end, slave_end, law)."),
         ("[job]", JobConfig, "The scripted main job."),
         ("[[job.steps]]", JobStep, "One step: an axis command with its arguments, and/or a dwell."),
         ("[trace]", TraceConfig, "The scope: what is recorded each cycle."),

@@ -159,3 +159,15 @@ def test_an_axis_follows_the_cam_through_coupling():
     assert ax.state is AxisState.SYNCHRONIZED_MOTION and not cmd.error
     assert ps[-1] == pytest.approx(cam.eval(m.position % 360.0)[0], abs=1e-9)
     assert np.max(np.abs(np.diff(ps))) <= 250.0 * T  # no jump: bounded by a speed
+
+
+def test_rotary_knife_decouples_forward_to_the_nearest_standstill_position():
+    # open curve: one turn (360) per master cycle; stopping "at 0" means the next multiple of 360
+    cam, m = SineCam(amp=0.0, feed=360.0), Master(v0=360.0, x0=1000.0)
+    f = CamFollower(m, cam)
+    f.decouple(decoupling=250.0, braking=340.0, standstill=0.0)
+    trace = run(f, m, 1500)
+    # master at 1000 is past M_A = 250 of its cycle: decoupling starts at 1330, ends at 1420,
+    # where the curve stands at 1420: the nearest standstill 0 (mod 360) is 1440, not 1080
+    assert f.state is CamState.DECOUPLED and f.p == pytest.approx(1440.0)
+    assert min(r[2] for r in trace) >= -1e-9  # never backwards

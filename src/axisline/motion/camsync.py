@@ -141,8 +141,9 @@ class CamFollower:
     def decouple(self, decoupling: float, braking: float, standstill: float) -> None:
         """Leave the curve: from the master's next pass of M_A blend to rest at S_0 at M_B.
 
-        standstill (S_0) is a slave position within the slave cycle of the curve: the slave
-        stops at S_0 plus the open curve's offset of the cycle it stops in.
+        standstill (S_0) is a slave position within the slave cycle of the curve; on an open
+        curve (a feed per cycle) the slave stops at the repetition of S_0 nearest to where the
+        curve is at M_B, so decoupling never turns the slave back a whole cycle.
         """
         period = self.curve.master_period
         for name, value in (("decoupling position", decoupling), ("braking position", braking)):
@@ -155,8 +156,13 @@ class CamFollower:
             raise ValueError("decoupling and braking position must differ")
         x0 = _next_crossing(self.master_x(), decoupling, period)
         self._pending = (x0, x0 + span)
-        k = math.floor((x0 + span) / period)
-        self._stop = standstill + k * self.curve.cycle_offset + self.slave_offset
+        # an open curve advances its offset every cycle: S_0 repeats with it, and the slave
+        # stops at the repetition nearest to where the curve is at M_B (no turn backwards)
+        stop = standstill + self.slave_offset
+        offset = self.curve.cycle_offset
+        if offset != 0.0:
+            stop += round((self.curve_state(x0 + span)[0] - stop) / offset) * offset
+        self._stop = stop
 
     @property
     def synchronous(self) -> bool:

@@ -1,0 +1,150 @@
+"""Masters and cams in the machine file, and the job commands that couple axes to them.
+
+    [[master]]   a master the slaves follow: virtual (velocity with ramps), time_base,
+                 axis (another axis' set point or actual), wheel (a measuring wheel on the
+                 material line) or axis_encoder (the encoder of an axis)
+    [[cam]]      a cam curve: a point table, a C2 spline or segments of motion laws
+
+Job steps then couple axes: gear_in, gear_in_pos, cam_in, cam_out, sync_out, and change a
+virtual master's speed with set_master_velocity. The motion library does the work
+(motion.master, motion.gear, motion.cam, motion.segments, motion.camsync); this module
+only turns machine-file words into its objects.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from .motion.cam import PointTable, SplineTable
+from .motion.curve import CamCurve
+from .motion.master import AxisMaster, EncoderMaster, Master, TimeBase, VirtualMaster
+from .motion.segments import SegmentCam
+from .plant.config import MeasuringWheelConfig
+
+Name = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
+
+
+class MasterEntry(BaseModel):
+    """One master (see the module docstring for the kinds)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    name: Name = Field(description="master name, used by the job's coupling steps")
+    kind: Literal["virtual", "time_base", "axis", "wheel", "axis_encoder"] = Field(description="what moves the master")
+    velocity: float = Field(0.0, ge=-1e7, le=1e7, description="virtual / time_base: speed at start, units/s")
+    acceleration: float | None = Field(None, gt=0.0, le=1e9, description="virtual: acceleration and deceleration")
+    jerk: float | None = Field(None, gt=0.0, le=1e12, description="virtual: jerk (none: constant acceleration)")
+    ramp_time: float = Field(0.0, ge=0.0, le=3600.0, description="time_base: time of every speed change, s")
+    axis: str | None = Field(None, description="axis / axis_encoder: the axis")
+    use: Literal["command", "actual"] = Field("command", description="axis: follow its set point or its actual position")
+    wheel: MeasuringWheelConfig | None = Field(None, description="wheel: the measuring wheel on the material")
+    velocity_filter: Literal["window", "first_order"] = Field("window", description="encoder masters: speed estimate")
+    sampling_time: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: window length, s")
+    time_constant: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: first-order filter, s")
+    counts_per_unit: float | None = Field(
+        None, gt=0.0, le=1e12, description="virtual / time_base / axis: resolution the gears count in (none: 1e9)"
+    )
+
+    @model_validator(mode="after")
+    def _needs(self) -> "MasterEntry":
+        if self.kind == "virtual" and self.acceleration is None:
+            raise ValueError(f"master {self.name!r}: a virtual master needs an acceleration")
+        if self.kind in ("axis", "axis_encoder") and self.axis is None:
+            raise ValueError(f"master {self.name!r}: kind {self.kind!r} needs axis = the axis it follows")
+        if self.kind == "wheel" and self.wheel is None:
+            raise ValueError(f"master {self.name!r}: kind 'wheel' needs a [master.wheel] table")
+        if self.velocity_filter == "first_order" and self.time_constant is None and self.kind in ("wheel", "axis_encoder"):
+            raise ValueError(f"master {self.name!r}: velocity_filter 'first_order' needs time_constant")
+        return self
+
+
+class CamEntry(BaseModel):
+    """One cam curve over a master cycle."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    name: Name = Field(description="cam name, used by cam_in steps")
+    master_period: float = Field(gt=0.0, le=1e9, description="master cycle length, master units")
+    kind: Literal["table", "spline", "segments"] = Field("table", description="linear point table, C2 spline, or motion laws")
+    points: list[tuple[float, float]] | None = Field(None, description="table / spline: (master, slave) pairs")
+    csv: str | None = Field(None, description="table / spline: a CSV file (header master,slave), relative to the machine file")
+    segments: list[dict[str, Any]] | None = Field(None, description="segments: master_end, slave_end, law")
+    start: float = Field(0.0, ge=-1e9, le=1e9, description="segments: slave position at master 0")
+    periodic: bool = Field(True, description="spline / segments: the curve repeats C2 across the cycle")
+
+    @model_validator(mode="after")
+    def _source(self) -> "CamEntry":
+        given = [k for k in ("points", "csv", "segments") if getattr(self, k) is not None]
+        wanted = "segments" if self.kind == "segments" else "points or csv"
+        if len(given) != 1 or (self.kind == "segments") != (given[0] == "segments"):
+            raise ValueError(f"cam {self.name!r} of kind {self.kind!r} needs exactly one of: {wanted} (given: {', '.join(given) or 'none'})")
+        return self
+
+
+def build_cam(entry: CamEntry, base_dir: Path) -> CamCurve:
+    if entry.kind == "segments":
+        return SegmentCam(entry.segments, start=entry.start, master_period=entry.master_period, periodic=entry.periodic)
+    if entry.csv is not None:
+        path = (base_dir / entry.csv).resolve()
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = [r for r in csv.DictReader(f)]
+        try:
+            master = [float(r["master"]) for r in rows]
+            slave = [float(r["slave"]) for r in rows]
+        except (KeyError, ValueError) as e:
+            raise ValueError(f"cam {entry.name!r}: {path}: expected a header master,slave and numbers ({e})") from None
+    else:
+        master = [p[0] for p in entry.points]
+        slave = [p[1] for p in entry.points]
+    if not master or master[-1] != entry.master_period:
+        raise ValueError(f"cam {entry.name!r}: the last master point {master[-1] if master else None!r} must equal master_period {entry.master_period!r}")
+    if entry.kind == "spline":
+        return SplineTable(master, slave, entry.periodic)
+    return PointTable(master, slave)
+
+
+def build_master(entry: MasterEntry, machine: Any) -> tuple[Master, Any]:
+    """The master and, for a wheel, the encoder the machine must sample each cycle."""
+    period = machine.period
+    cpu = {} if entry.counts_per_unit is None else {"counts_per_unit": entry.counts_per_unit}
+    filt = {"velocity_filter": entry.velocity_filter, "sampling_time": entry.sampling_time, "time_constant": entry.time_constant}
+    if entry.kind == "virtual":
+        return VirtualMaster(period, entry.velocity, acceleration=entry.acceleration, jerk=entry.jerk, **cpu), None
+    if entry.kind == "time_base":
+        return TimeBase(period, entry.velocity, ramp_time=entry.ramp_time, **cpu), None
+    if entry.kind == "axis":
+        return AxisMaster(machine.units[entry.axis].axis, use=entry.use, **cpu), None
+    if entry.kind == "axis_encoder":
+        enc = machine.units[entry.axis].encoder
+        return EncoderMaster(enc, enc.counts_per_unit, period, **filt), None
+    wheel = entry.wheel.build(machine.material, machine.child_rng(f"master:{entry.name}"))
+    return EncoderMaster(wheel, wheel.counts_per_unit, period, **filt), wheel
+
+
+class SyncHandle:
+    """What a job waits on for a coupling: done once the slave is synchronous (or decoupled)."""
+
+    def __init__(self, command: Any, ready: Any) -> None:
+        self.command, self._ready = command, ready
+
+    @property
+    def done(self) -> bool:
+        return not self.error and bool(self._ready())
+
+    @property
+    def error(self) -> bool:
+        return bool(getattr(self.command, "error", False))
+
+    @property
+    def error_id(self) -> int:
+        return getattr(self.command, "error_id", 0)
+
+    @property
+    def error_text(self) -> str:
+        return getattr(self.command, "error_text", "")
+
+    aborted = False
