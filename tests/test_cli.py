@@ -159,3 +159,15 @@ def test_a_longer_duration_on_the_command_line_is_recorded_whole(tmp_path):
     assert res.exit_code == 0
     rec = Trace.load_npz(tmp_path / "t.npz")
     assert len(rec.data()["t"]) == 3000 and not rec.overflowed
+
+
+def test_cam_check_reports_maxima_and_the_largest_master_speed(tmp_path):
+    res = runner.invoke(app, ["cam", str(EXAMPLES / "cam_sync.toml"), "cut", "--master-speed", "450", "--axis", "knife", "--plot", str(tmp_path / "c.png")])
+    assert res.exit_code == 0, res.output
+    # modified sine: cv = 1.76 -> 360 deg over 120 mm at 450 mm/s peaks at 1.76 * 3 * 450
+    assert "2375" in res.output and "largest master speed" in res.output
+    assert (tmp_path / "c.png").read_bytes()[:4] == b"\x89PNG"
+    res = runner.invoke(app, ["cam", str(EXAMPLES / "cam_sync.toml"), "cut", "--master-speed", "2000", "--axis", "knife"])
+    assert res.exit_code == 1 and "NO" in res.output
+    res = runner.invoke(app, ["cam", str(EXAMPLES / "cam_sync.toml"), "nope", "--master-speed", "1"])
+    assert res.exit_code == 2

@@ -150,6 +150,47 @@ def plot(
 
 
 @app.command()
+def cam(
+    machine: Path = typer.Argument(..., help="machine file (TOML) with the [[cam]]"),
+    name: str = typer.Argument(..., help="the cam's name"),
+    master_speed: float = typer.Option(..., "--master-speed", help="constant master speed, master units/s"),
+    axis: Optional[str] = typer.Option(None, "--axis", help="check against this axis' v_max, a_max, j_max"),
+    plot_file: Optional[Path] = typer.Option(None, "--plot", help="draw the cam at that speed (PNG)"),
+) -> None:
+    """Cam check: the slave's largest velocity, acceleration and jerk at a master speed (exit 1 if over the limits)."""
+    from .motion.cam import check, plot_cam
+
+    m = _load(machine)
+    if name not in m.cams:
+        console.print(f"[red]no cam {name!r}[/red] (cams: {', '.join(m.cams) or 'none'})")
+        raise typer.Exit(2)
+    limits = {}
+    if axis is not None:
+        if axis not in m.units:
+            console.print(f"[red]no axis {axis!r}[/red] (axes: {', '.join(m.units)})")
+            raise typer.Exit(2)
+        c = m.units[axis].axis.config
+        limits = {"v_max": c.v_max, "a_max": c.a_max, "j_max": c.j_max}
+    curve = m.cams[name]
+    r = check(curve, master_speed, **limits)
+    t = Table(title=f"cam {name} at master speed {master_speed:g}/s")
+    for col in ("", "maximum", "at master position", "limit", "ok"):
+        t.add_column(col)
+    for label, value, at, lim, over in (
+        ("velocity", r.max_velocity, r.max_velocity_at, limits.get("v_max"), r.velocity_exceeded),
+        ("acceleration", r.max_acceleration, r.max_acceleration_at, limits.get("a_max"), r.acceleration_exceeded),
+        ("jerk", r.max_jerk, r.max_jerk_at, limits.get("j_max"), r.jerk_exceeded),
+    ):
+        t.add_row(label, f"{value:.6g}", f"{at:.6g}", "" if lim is None else f"{lim:g}", "NO" if over else "yes")
+    out.print(t)
+    out.print(f"largest master speed within the limits: {r.max_master_speed:.6g}/s")
+    if plot_file is not None:
+        plot_cam(curve, master_speed, plot_file, title=f"cam {name}")
+        out.print(str(plot_file))
+    raise typer.Exit(0 if r.within_limits else 1)
+
+
+@app.command()
 def schema(out_file: Optional[Path] = typer.Option(None, "--out", help="write to this file instead of printing")) -> None:
     """Print the machine-file reference (every key: type, default, allowed range, meaning)."""
     from .schema_doc import render
