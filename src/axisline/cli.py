@@ -209,28 +209,38 @@ def serve(
     machine: Path = typer.Argument(..., help="machine file (TOML)"),
     modbus: Optional[str] = typer.Option(None, "--modbus", help="Modbus TCP endpoint HOST:PORT"),
     serial_tcp: Optional[str] = typer.Option(None, "--serial-tcp", help="serial protocol over TCP HOST:PORT"),
+    serial_pty: bool = typer.Option(False, "--serial-pty", help="serial protocol on a pseudo-terminal (path printed)"),
     http: Optional[str] = typer.Option(None, "--http", help="web HMI HOST:PORT"),
+    allow_writes: bool = typer.Option(False, "--allow-writes", help="accept writes from the network (the operator's explicit enable)"),
     duration: Optional[float] = typer.Option(None, "--duration", help="stop by itself after this many seconds"),
 ) -> None:
     """Run the machine on the wall clock (soft real time) with its protocol endpoints.
 
-    Ctrl-C or SIGTERM stops the axes with their stop ramps, saves what must persist and exits 0.
+    Endpoints bind to 127.0.0.1 unless a host is given. Writes from the network are refused
+    unless --allow-writes is given. Ctrl-C or SIGTERM stops the axes with their stop ramps,
+    saves what must persist and exits 0.
     """
-    from .machine import Machine
-    from .kernel import WallClock
     from .config import load_machine_file
+    from .kernel import WallClock
+    from .machine import Machine
 
     try:
         cfg = load_machine_file(machine)
+        m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(machine))
     except ConfigError as e:
         raise _bad_file(e) from None
-    endpoints = {"--modbus": _endpoint(modbus, "--modbus"), "--serial-tcp": _endpoint(serial_tcp, "--serial-tcp"), "--http": _endpoint(http, "--http")}
-    offered: set[str] = set()  # the personality issues add their endpoints
-    for opt, ep in endpoints.items():
-        if ep is not None and opt not in offered:
-            console.print(f"[red]{opt}[/red]: this machine (personality {cfg.machine.personality!r}) offers no such endpoint")
+    wanted = {"modbus": _endpoint(modbus, "--modbus"), "serial-tcp": _endpoint(serial_tcp, "--serial-tcp"), "http": _endpoint(http, "--http")}
+    if serial_pty:
+        wanted["serial-tcp" if "serial-tcp" not in wanted else "serial-pty"] = ("pty", 0)
+    offered = set(m.device.endpoints) if m.device is not None else set()
+    for kind, ep in wanted.items():
+        base_kind = "serial-tcp" if kind == "serial-pty" else kind
+        if ep is not None and base_kind not in offered:
+            console.print(f"[red]--{kind}[/red]: this machine (personality {cfg.machine.personality!r}) offers no such endpoint")
             raise typer.Exit(2)
-    m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(machine))
+    if m.device is not None:
+        m.device.network_writes = allow_writes
+    servers = _start_servers(m, wanted, serial_pty)
 
     def _stop(signum, frame):  # runs between cycles: the scheduler checks the flag
         m.scheduler.stop()
@@ -240,13 +250,41 @@ def serve(
     limit = None if duration is None else max(1, round(duration / m.period))
     console.print(f"serving {machine} on the wall clock, cycle {m.clock.period_us} us; Ctrl-C stops")
     print("ready", flush=True)
-    n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
+    try:
+        n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
+    finally:
+        for srv in servers:
+            srv.stop()
     rested = m.stop_all()
     saved = m.persist()
     late = getattr(m.clock, "late_max", 0.0)
     console.print(f"stopped after {n} cycles; axes {'at rest' if rested else 'NOT at rest'}; saved {len(saved)} file(s); worst lateness {late * 1e3:.2f} ms")
     print("stopped", flush=True)
     raise typer.Exit(0 if rested else 1)
+
+
+def _start_servers(m, wanted: dict, serial_pty: bool) -> list:
+    """Start the protocol servers the command line asked for; print where they listen."""
+    from .fieldbus.serial_tcp import PtyBridge, SerialTcpServer
+
+    servers: list = []
+    ep = wanted.get("serial-tcp")
+    if ep is not None and ep[0] != "pty":
+        srv = SerialTcpServer(m.device.byte_endpoint(), m.commands, ep[0], ep[1]).start()
+        servers.append(srv)
+        print(f"serial-tcp {srv.address[0]}:{srv.address[1]}", flush=True)
+    if serial_pty:
+        bridge = PtyBridge(m.device.byte_endpoint(), m.commands).start()
+        servers.append(bridge)
+        print(f"serial-pty {bridge.path}", flush=True)
+    if wanted.get("modbus") is not None:
+        from .fieldbus.modbus import ModbusServer
+
+        host, port = wanted["modbus"]
+        srv = ModbusServer(m.device.register_endpoint(), m.commands, host, port).start()
+        servers.append(srv)
+        print(f"modbus {srv.address[0]}:{srv.address[1]}", flush=True)
+    return servers
 
 
 def main() -> None:  # pragma: no cover

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import tomllib
 from pathlib import Path
-from typing import Annotated, Literal, Union
+from typing import Annotated, Any, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -54,7 +54,7 @@ class MachineSection(_Strict):
     logic_every: int = Field(
         1, ge=1, le=1000, description="the logic task (job, device logic) runs every n-th cycle, e.g. 4 as the CLM's"
     )
-    personality: Literal["none"] = Field("none", description="device personality (the device issues add theirs)")
+    personality: str = Field("none", description="device personality: none, or a registered device (its [device] table configures it)")
 
 
 class ServoEntry(ServoDriveConfig):
@@ -112,6 +112,7 @@ class MachineConfig(_Strict):
     marks: list[MarkEntry] = Field(default_factory=list, max_length=16, description="print-mark sensors on the material")
     io: DigitalIOConfig = Field(default_factory=DigitalIOConfig, description="named digital inputs and outputs")
     master: list[MasterEntry] = Field(default_factory=list, max_length=16, description="masters slaves can follow")
+    device: dict[str, Any] = Field(default_factory=dict, description="the personality's own table, validated by it")
     cam: list[CamEntry] = Field(default_factory=list, max_length=64, description="cam curves")
     job: JobConfig = Field(default_factory=JobConfig)
     trace: TraceConfig = Field(default_factory=TraceConfig)
@@ -174,9 +175,31 @@ class MachineConfig(_Strict):
 
 def parse_machine(data: dict, source: str = "<machine>") -> MachineConfig:
     try:
-        return MachineConfig.model_validate(data)
+        config = MachineConfig.model_validate(data)
     except ValidationError as err:
         raise explain(err, MachineConfig, source) from None
+    device_config(config, source)  # the personality's table is checked with the rest of the file
+    return config
+
+
+def device_config(config: MachineConfig, source: str = "<machine>"):
+    """The validated [device] table of the machine's personality (None without one)."""
+    from .devices import base
+
+    name = config.machine.personality
+    if name == "none":
+        if config.device:
+            raise ConfigError(source, ["device: a [device] table needs machine.personality"])
+        return None
+    try:
+        cls = base.load(name)
+    except ValueError as e:
+        raise ConfigError(source, [f"machine.personality = {name!r}: {e}"]) from None
+    try:
+        return cls.Config.model_validate(config.device)
+    except ValidationError as err:
+        inner = explain(err, cls.Config, source)
+        raise ConfigError(source, [f"device.{p}" for p in inner.problems]) from None
 
 
 def load_machine_file(path: str | Path) -> MachineConfig:

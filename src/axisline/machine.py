@@ -27,7 +27,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .config import AxisEntry, MachineConfig, load_machine_file, parse_machine
+from .config import AxisEntry, MachineConfig, device_config, load_machine_file, parse_machine
 from .configerrors import ConfigError
 from .job import JobRunner
 from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace
@@ -125,6 +125,13 @@ class Machine:
         for mark in config.marks:
             self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, self.child_rng(f"marks:{mark.name}")))
         self._add_sync(config)
+        self.device = None  # the personality (devices/base.py), if the machine file names one
+        dev_cfg = device_config(config, source or "<machine>")
+        if dev_cfg is not None:
+            from .devices import base
+
+            self.device = base.load(config.machine.personality)(self, dev_cfg)
+            self.scheduler.add_task("device", self.device.tick, Stage.LOGIC, every=config.machine.logic_every)
         self.io = config.io.build()
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
@@ -443,8 +450,8 @@ class Machine:
         return all(u.axis.command_velocity == 0.0 and u.axis.command_acceleration == 0.0 for u in self.units.values())
 
     def persist(self) -> list[Path]:
-        """Save what must survive a restart (parameters, programs, curves): personalities add theirs."""
-        return []
+        """Save what must survive a restart (parameters, programs, curves): the personality's."""
+        return self.device.persist() if self.device is not None else []
 
     # -- reporting ----------------------------------------------------------------------
 
@@ -483,6 +490,7 @@ class Machine:
             },
             "axes": axes,
             "trace": {"samples": len(self.trace), "channels": list(self.trace.channels)} if self.trace else None,
+            "device": self.device.summary() if self.device is not None else None,
         }
 
 

@@ -1,0 +1,94 @@
+"""Device personalities: how a device (FS701, COMPAX, CLM, WAGO 750-672) plugs into a Machine.
+
+A personality is a class registered under a name (python-can's interface registry is the
+model: one interface, many back ends, imported only when used). The machine file names it
+in `[machine] personality = "fs701"` and configures it in its own `[device]` table, which
+the personality validates with its pydantic model. The Machine then
+
+    - builds it after the axes and the plant: `Personality(machine, config)`,
+    - runs `tick(cycle)` in the LOGIC stage every `logic_every` cycles,
+    - asks it for its protocol endpoints when `axisline serve` names them,
+    - calls `persist()` on shutdown and `summary()` for the run report.
+
+Rules of the house: a personality reads inputs and writes set points and outputs through
+the kernel (axes, the I/O image, masters); it never integrates physics and never opens a
+socket. Protocol code (fieldbus/) maps bytes to the personality's typed API, at cycle
+boundaries through the machine's command queue.
+"""
+
+from __future__ import annotations
+
+import importlib
+from abc import ABC, abstractmethod
+from pathlib import Path
+from typing import Any, ClassVar, Protocol
+
+from pydantic import BaseModel, ConfigDict
+
+# name -> "module:Class", imported on first use so a machine only loads its own device
+PERSONALITIES: dict[str, str] = {}
+
+
+def register(name: str, target: str) -> None:
+    """Register a personality class by import path ("axisline.devices.fs701.device:Fs701")."""
+    PERSONALITIES[name] = target
+
+
+def load(name: str) -> type["Personality"]:
+    try:
+        target = PERSONALITIES[name]
+    except KeyError:
+        raise ValueError(f"unknown personality {name!r} (known: {', '.join(sorted(PERSONALITIES)) or 'none'})") from None
+    module, _, cls = target.partition(":")
+    return getattr(importlib.import_module(module), cls)
+
+
+class ByteEndpoint(Protocol):
+    """A byte-stream protocol (serial register access, ASCII interface): bytes in, reply bytes out."""
+
+    def feed(self, data: bytes) -> bytes: ...
+
+
+class RegisterEndpoint(Protocol):
+    """A register image served over Modbus TCP (16-bit registers)."""
+
+    def read_registers(self, kind: str, address: int, count: int) -> list[int]: ...
+
+    def write_registers(self, address: int, values: list[int]) -> None: ...
+
+
+class NoDeviceConfig(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Personality(ABC):
+    """Base of the device personalities."""
+
+    name: ClassVar[str]
+    Config: ClassVar[type[BaseModel]] = NoDeviceConfig
+    #: protocol endpoints it can serve: "serial-tcp" (byte stream), "modbus" (registers), "http"
+    endpoints: ClassVar[tuple[str, ...]] = ()
+
+    def __init__(self, machine: Any, config: BaseModel) -> None:
+        self.machine = machine
+        self.config = config
+        #: the operator's explicit enable for writes from the network (`serve --allow-writes`);
+        #: endpoints refuse writes (with the protocol's own refusal) while it is False
+        self.network_writes = False
+
+    @abstractmethod
+    def tick(self, cycle: int) -> None:
+        """Device logic of one logic cycle (LOGIC stage)."""
+
+    def byte_endpoint(self) -> ByteEndpoint:
+        raise NotImplementedError(f"{self.name} offers no byte-stream protocol")
+
+    def register_endpoint(self) -> RegisterEndpoint:
+        raise NotImplementedError(f"{self.name} offers no register image")
+
+    def persist(self) -> list[Path]:
+        """Save what must survive a restart (atomically); returns the files written."""
+        return []
+
+    def summary(self) -> dict[str, Any]:
+        return {}
