@@ -155,7 +155,16 @@ class BitTable:
         self._src[Bit.MONE] = 1
         self._marker = bytearray(256)  # values of targets linked to MZERO / MONE
         self.filter_output: Callable[[int, bool], bool] = lambda n, value: value
+        self._ptr: list[int] = []  # pointers of targets 128..223, refreshed when the config changes
+        self._generation = -1
         self.reset()
+
+    def _pointers(self) -> list[int]:
+        if self._generation != self.config.generation:
+            get = self.config.get
+            self._ptr = [get(t) for t in _POINTER_TARGETS]
+            self._generation = self.config.generation
+        return self._ptr
 
     def reset(self) -> None:
         """After a reset: MZERO-linked bits are 0, MONE-linked bits are 1 (§3.10.4.1)."""
@@ -170,6 +179,10 @@ class BitTable:
             raise WagoError(1243, f"bit {n} is a constant and cannot be written")
         self._src[n] = 1 if value else 0
 
+    def put(self, n: int, value: bool) -> None:
+        """set_source without the checks, for the device's own source bits (hot path)."""
+        self._src[n] = 1 if value else 0
+
     def set_byte(self, first: int, value: int) -> None:
         """Eight source bits first .. first+7 from one byte (control bytes -> KBUS_CTRLx_y)."""
         for i in range(8):
@@ -178,7 +191,7 @@ class BitTable:
     # ---- reading
     def read(self, n: int) -> bool:
         """Value of bit n (0 .. 255): a source, or the source a target's pointer chain ends at."""
-        if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n <= 255:
+        if type(n) is not int and (isinstance(n, bool) or not isinstance(n, int)) or not 0 <= n <= 255:
             raise WagoError(1241, f"bit number {n!r} is outside 0 .. 255")
         return self._resolve(n, 0)
 
@@ -187,7 +200,7 @@ class BitTable:
             return bool(self._src[n])
         if n >= 224:
             return False  # no pointer (unused or internal bits)
-        ptr = self.config.get(n)
+        ptr = self._pointers()[n - 128]
         if ptr in (Bit.MZERO, Bit.MONE):
             return bool(self._marker[n])
         if 168 <= n <= 175:  # FILTn: the pointer selects the filter input, reading gives the output

@@ -382,7 +382,12 @@ class ConfigTable:
             for e, value in staged.items():
                 self._factory[e.address : e.address + e.size] = _encode(e, value)
         self._data = bytearray(self._factory)
+        self._cache: dict[str | int, int] = {}
         self.generation = 0
+
+    def _changed(self) -> None:
+        self._cache.clear()
+        self.generation += 1
 
     # ---- lookup
     @staticmethod
@@ -409,10 +414,14 @@ class ConfigTable:
 
     # ---- typed access
     def get(self, key: str | int) -> int:
+        try:
+            return self._cache[key]  # the device reads dozens of values per 1 ms tick
+        except KeyError:
+            pass
         e = self.entry(key)
-        if e.ignored:
-            return 0
-        return _decode(e, bytes(self._data[e.address : e.address + e.size]))
+        v = 0 if e.ignored else _decode(e, bytes(self._data[e.address : e.address + e.size]))
+        self._cache[key] = v
+        return v
 
     __getitem__ = get
 
@@ -423,7 +432,7 @@ class ConfigTable:
         if e.ignored:
             return
         self._data[e.address : e.address + e.size] = _encode(e, value)
-        self.generation += 1
+        self._changed()
 
     __setitem__ = set
 
@@ -436,7 +445,7 @@ class ConfigTable:
         for e, v in staged:
             if not e.ignored:
                 self._data[e.address : e.address + e.size] = _encode(e, v)
-        self.generation += 1
+        self._changed()
 
     # ---- byte access (mailbox CONFIG_RD / CONFIG_WR)
     def read_bytes(self, address: int, size: int) -> bytes:
@@ -458,7 +467,7 @@ class ConfigTable:
         for e in touched:
             if not e.ignored:
                 self._data[e.address : e.address + e.size] = new[e.address : e.address + e.size]
-        self.generation += 1
+        self._changed()
 
     @staticmethod
     def _span(what: str, address: int, size: int) -> None:
@@ -493,7 +502,7 @@ class ConfigTable:
         for e in ENTRIES:
             if e.ignored:
                 self._data[e.address : e.address + e.size] = bytes(e.size)
-        self.generation += 1
+        self._changed()
 
     def validate(self, data: bytes | None = None) -> None:
         """The rules between entries: current-controller password (1162) and supply limits (1817)."""
@@ -519,7 +528,7 @@ class ConfigTable:
     def restore_defaults(self) -> None:
         """FACTORY_DEFAULT values (CONFIG_RESTORE 2)."""
         self._data = bytearray(self._factory)
-        self.generation += 1
+        self._changed()
 
     def factory_bytes(self) -> bytes:
         return bytes(self._factory)
@@ -536,6 +545,7 @@ class ConfigTable:
         other = ConfigTable.__new__(ConfigTable)
         other._factory = bytearray(self._factory)
         other._data = bytearray(self._data)
+        other._cache = {}
         other.generation = 0
         return other
 

@@ -91,15 +91,16 @@ Decisions ([AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points of wago.md; the manual 
 * D12 On_Target in speed control (§4.6 TargetWindowSpeed vs. S2 table "no function" [CONFLICT]):
   set when the commanded speed has been reached (as TargetWindowSpeed and SPEED describe); Busy
   is 1 until then. On_Speed/On_Target compare |v - v_set| <= TargetWindowSpeed.
-* D13 StandStill = the frequency output is 0 (bit table §4.5); Direction keeps its last value at
-  standstill (valid only when StandStill = 0).
+* D13 StandStill = the frequency output is 0 (bit table §4.5). Direction is 1 while moving positive
+  and reads 0 at standstill ("valid only when StandStill is 0"; wago.md §9.12 shows S2 = 0x05 at target).
 * D14 Start with an error pending is simply refused by Ready = 0; Start while Error_Quit is set is
   1361; Start without a mode is 1351; Start while a mode is being left is ignored.
 * D15 Freq_Range_Sel/Acc_Range_Sel and the scaling factors are latched while Enable = 0 (§3.7.2:
   "accepted only when Enable is set to 0"); a configuration change takes effect at the next
   Enable. Freq_Range_Sel value = C2 & 3 with C2.0 as LSB (wago.md §3.4 [AMBIGUOUS], §3.7.2 reading).
 * D16 Acknowledging a 2xxx error (Error_Quit edge or DIAG_QUIT_ERROR) performs the warm start
-  (configuration from the saved data set, Reset bit set); 3xxx errors stay until power-off.
+  (volatile state lost, Reset bit set; the `on_warm_start` hook lets the table manager reload the
+  saved configuration and tables); 3xxx errors stay until power-off.
 * D17 MOVE/MOVE_REL/SPEED (non-immediate) are accepted when no process is running (Busy = 0),
   also after a stop left On_Target at 0 - a literal "On_Target has been set" would lock MOVE out
   after every STOP until MOVE_IMMEDIATE. While a process runs they return 0x12.
@@ -123,6 +124,19 @@ Decisions ([AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points of wago.md; the manual 
   (at standstill otherwise). §3.11.4 naming (wago.md §2.11 [CONFLICT]).
 * D24 Positions: user -> microsteps and microsteps -> user truncate toward zero; the set point is
   reported as its nearest microstep (units.py).
+* D25 Current_Ratio_Stop applies while a STOP ramp brakes; at standstill (also with Stop2_N = 0) the
+  standstill ratio holds the motor - 150 % at rest would trip the 10 s overcurrent model.
+* D26 Drive_Direction (HwSwConfig bit 2) inverts the sign of the set point handed to the axis only;
+  logical positions, limit switches and software limits keep their directions (wago.md §4.3).
+
+Tests (tests/devices/wago672): D1 test_speed.py; D2-D4 test_jog.py (test_start_in_jog_mode_is_ignored,
+test_jog_by_direction_bits_and_both_directions_turn_the_drive_off, test_stepping_mode_timeout_ends_the_run);
+D5-D7 test_referencing.py, test_drive_command.py::test_start_referencing_does_not_set_on_target; D8
+test_positioning.py::test_on_the_fly_with_linear_ramps_waits_for_constant_speed; D9-D11, D26
+test_limits_and_rotary.py; D12 test_speed.py; D13 test_positioning.py::test_exchange_of_wago_md_9_12;
+D14, D16, D22 test_errors.py; D15 test_enable_chain.py; D17, D18 test_drive_command.py::test_speed_and_stop_fast;
+D20 test_positioning.py::test_velocity_above_speed_limit_turns_the_drive_off; D23
+test_positioning.py::test_brake_released_before_the_move_and_applied_before_the_target.
 """
 
 from __future__ import annotations
@@ -136,7 +150,6 @@ from axisline.devices.wago672.config_table import CONF_VERSION, ConfigTable, Con
 from axisline.devices.wago672.errors import ErrorClass, ErrorMemory, WagoError, blink_signal, err_flag, error_class
 from axisline.devices.wago672.image import (
     C0,
-    IMAGE_SIZE,
     MODE_IDLE,
     MODE_JOG,
     MODE_MAILBOX,
@@ -155,7 +168,16 @@ from axisline.devices.wago672.image import (
 )
 from axisline.devices.wago672.referencing import RefPhase, RefRun
 from axisline.devices.wago672.thermal import CurrentPhase, OvercurrentModel, phase_current
-from axisline.devices.wago672.trajectory import ACC_INTERNAL_MAX, Feed, Ramp, plan_move, plan_speed, plan_stop, ramp_from_mode
+from axisline.devices.wago672.trajectory import (
+    ACC_INTERNAL_MAX,
+    Feed,
+    Ramp,
+    needs_constant_speed,
+    plan_move,
+    plan_speed,
+    plan_stop,
+    ramp_from_mode,
+)
 from axisline.devices.wago672.units import Scaling, acc_multiplier, freq_prescaler
 from axisline.motion.axis import Axis, AxisState, ErrorId
 from axisline.motion.profiles import Limits, State, plan_velocity
@@ -288,6 +310,7 @@ class Wago672:
         self.position_table: Callable[[int, int], int] = _no_position_table
         self.cam_pattern: Callable[[float], int] | None = None
         self.eeprom_writing = False  # set by the table manager: LED A flashes at 10 Hz
+        self.on_warm_start: Callable[[Wago672], None] | None = None  # table manager: reload EEPROM data
         self.stepping_timeout_ms = 0  # SteppingMode (D4): 0 = JogMode without time limit
         self.reference_on_target = True  # D5: On_Target after a PI reference run
         # simulated environment of the output stage (D22): temperature [degC], DC link [V]
@@ -347,12 +370,8 @@ class Wago672:
         self._overcurrent = OvercurrentModel()
         self.current_phase = CurrentPhase.OFF
         self.phase_current = 0.0
-        self._ratios = {
-            CurrentPhase.STANDSTILL: self.config["Current_Ratio_StandStill"],
-            CurrentPhase.RAMP_UP: self.config["Current_Ratio_RampUp"],
-            CurrentPhase.DRIVE: self.config["Current_Ratio_Drive"],
-            CurrentPhase.RAMP_DOWN: self.config["Current_Ratio_RampDown"],
-        }
+        self.current_ratio = 0
+        self._ratio_set: dict[CurrentPhase, int] = {}  # SET_CURRENT values (else the configuration's)
         self._error_since = 0
         self._bad_selection = 0
         self._prev: dict[str, bool] = {}
@@ -383,6 +402,8 @@ class Wago672:
 
     def warm_start(self) -> None:
         """Warm start: volatile state lost, Reset bit set (also after acknowledging a 2xxx error)."""
+        if self.on_warm_start is not None:
+            self.on_warm_start(self)
         self._power_on()
 
     # ================================================================== PLC side
@@ -522,7 +543,7 @@ class Wago672:
             41: self.program.counter if self.program is not None else 0,
             43: int(round(self._v_set_f)),
             55: self.scaling.prescaler,
-            56: int(round(self.phase_current * 1000)),
+            56: self.current_ratio,
             1024: cyc,
             1025: pos,
             1026: vel,
@@ -555,11 +576,11 @@ class Wago672:
         out = self._out
         # ---- 1 sources: inputs and control bytes
         for i in range(6):
-            b.set_source(Bit.Input1 + i, self.inputs.read(i + 1))
+            b.put(Bit.Input1 + i, self.inputs.read(i + 1))
         b.set_byte(Bit.KBUS_CTRL1_0, out.c1)
         b.set_byte(Bit.KBUS_CTRL2_0, out.c2)
         b.set_byte(Bit.KBUS_CTRL3_0, out.c3)
-        b.set_source(Bit.KBUS_Active, self._last_write is not None and cycle - self._last_write <= 100)
+        b.put(Bit.KBUS_Active, self._last_write is not None and cycle - self._last_write <= 100)
         # ---- 2 the signals this module consumes, through their links
         try:
             s = self._read_signals()
@@ -648,8 +669,8 @@ class Wago672:
         self._prev = s
 
     def _read_signals(self) -> dict[str, bool]:
-        r = self.bits.read
-        return {name: r(bit) for name, bit in _SIGNALS.items()}
+        r = self.bits._resolve  # the bit numbers are known to be valid
+        return {name: r(bit, 0) for name, bit in _SIGNAL_ITEMS}
 
     # ================================================================== errors
 
@@ -665,6 +686,9 @@ class Wago672:
         self._ready = False
         self._stage_on = False
         self._axis_power(False)
+        self.current_phase = CurrentPhase.OFF  # the output stage is off: no current from now on
+        self.phase_current = 0.0
+        self.current_ratio = 0
 
     def raise_error(self, code: int, text: str = "", cause: Callable[[], bool] | None = None) -> None:
         """For the second engineer's parts (tables, programs, bit linking): report a device error."""
@@ -708,6 +732,7 @@ class Wago672:
         self._no_ramp(stopped=True)
         self.mode = MODE_IDLE
         self._mode_exit = False
+        self._stop_n_ack = False
         self._start_ack = False
         self.busy = False
         self.on_speed = False
@@ -718,7 +743,7 @@ class Wago672:
             self.program.stop(self)
 
     def _axis_steps(self) -> float:
-        return self.axis.command_position * self._k
+        return self.axis.command_position * self._k * self._dir_sign
 
     def _axis_power(self, on: bool) -> None:
         ax = self.axis
@@ -740,7 +765,14 @@ class Wago672:
         """Hand the feed to the axis while it moves; release it (STANDSTILL) at rest."""
         if not self._stage_on or not self.axis.powered:
             return
-        moving = not (self.feed.ended(cycle - 1) and self.feed.state(cycle - 1)[1] == 0.0 and self._sp[1] == 0.0)
+        ax = self.axis
+        moving = not (
+            self.feed.ended(cycle - 1)
+            and self.feed.state(cycle - 1)[1] == 0.0
+            and self._sp[1] == 0.0
+            and ax.command_velocity == 0.0
+            and ax.command_acceleration == 0.0
+        )
         engaged = self._engaged()
         if moving and not engaged:
             if self.axis.state in (AxisState.STANDSTILL, AxisState.DISCRETE_MOTION, AxisState.CONTINUOUS_MOTION):
@@ -903,7 +935,7 @@ class Wago672:
         self._start_ack = False
         self._source = "pi"
         self._jog_dir = 0
-        self._jog_block = True  # a jog key held while the mode is selected must be pressed again
+        self._jog_block = False
         self._last_target = None
 
     def _leave_mode(self) -> None:
@@ -942,13 +974,13 @@ class Wago672:
         ok = True
         try:
             if mode == MODE_POSITIONING:
-                if self.precalc_ack and self._precalc is not None:
+                if s["precalc"] and self._precalc is not None:
                     ok = self._start_precalc()
                 else:
                     sp = PositioningSetpoints.decode(self._out.data)
                     ok = self._pi_position(sp.velocity, sp.acceleration, sp.target)
             elif mode == MODE_SPEED:
-                if self.precalc_ack and self._precalc is not None:
+                if s["precalc"] and self._precalc is not None:
                     ok = self._start_precalc()
                 else:
                     sp = SpeedSetpoints.decode(self._out.data)
@@ -966,7 +998,7 @@ class Wago672:
         except WagoError as e:
             self._raise(e.code, e.text)
             return
-        self._start_ack = ok is not None
+        self._start_ack = self._ready and ok is not None
 
     # ---- single positioning
     def _pi_position(self, velocity: int, acceleration: int, target: int) -> bool:
@@ -1027,7 +1059,7 @@ class Wago672:
         def go() -> None:
             self._run(plan_move(self._state(), target, f, up, down, f_end), "position", up, down)
 
-        if self._defer(up.variant != "" or down.variant != "" or up.shape != down.shape):
+        if self._defer(needs_constant_speed(up, down)):
             self._pending = go
         else:
             self._pending = None
@@ -1064,7 +1096,7 @@ class Wago672:
         def go() -> None:
             self._run(plan_speed(self._state(), f, up, down), "speed", up, down)
 
-        if self._defer(bool(up.variant or down.variant)):
+        if self._defer(needs_constant_speed(up, down)):
             self._pending = go
         else:
             self._pending = None
@@ -1206,6 +1238,14 @@ class Wago672:
     def ref_at_rest(self) -> bool:
         return self._at_rest()
 
+    def ref_edge(self, edge_position: float) -> None:
+        """The reference edge: the reported position is the reference value from now on."""
+        try:
+            ref = self.scaling.steps(self.config["Reference_Offset"], "Reference_Offset")
+        except WagoError:
+            return
+        self._ref_pending_shift = ref - edge_position
+
     def ref_finish(self, edge_position: float, on_limit_switch: int) -> None:
         """At rest after the edge: ActualPosition = Reference_Offset + braking distance."""
         try:
@@ -1344,7 +1384,6 @@ class Wago672:
                 if jog:
                     self._jog_dir = 0
                     self._jog_block = True
-                self.busy = False if not jog else self.busy
             return
         if jog and self._jog_ls and not self._stopping:
             # JogMode: leaving the limit switch the drive started on brakes again (§3.11.3.1)
@@ -1376,8 +1415,6 @@ class Wago672:
             if jog:
                 self._jog_dir = 0
                 self._jog_block = True
-            else:
-                self.busy = False
 
     # ================================================================== end of motions, flags
 
@@ -1422,13 +1459,13 @@ class Wago672:
 
     def _update_flags(self, s: dict[str, bool]) -> None:
         p, v, a, _ = self._sp
-        if v > 0.0:
-            self._direction = True
-        elif v < 0.0:
-            self._direction = False
+        self._direction = v > 0.0  # D13: 1 moving positive; 0 otherwise (valid when moving)
         window = self.config["TargetWindowSpeed"]
         if self._motion in ("position", "speed", "jog", "reference") and self._pending is None:
-            self.on_speed = abs(abs(self.scaling.velocity_float(v)) - abs(self._v_set)) <= window and (v != 0.0 or self._v_set == 0)
+            actual = self.scaling.velocity_float(v)
+            if self._motion != "speed":
+                actual = abs(actual)  # positioning, jog, referencing: the speed, either direction
+            self.on_speed = abs(actual - self._v_set) <= window and (v != 0.0 or self._v_set == 0)
         else:
             self.on_speed = False
         if self.mode == MODE_JOG:
@@ -1455,7 +1492,7 @@ class Wago672:
         elif self._stopping and v != 0.0:
             phase = CurrentPhase.STOP
         elif v == 0.0:
-            phase = CurrentPhase.STOP if (self._ready and not self._stop_n_ack) else CurrentPhase.STANDSTILL
+            phase = CurrentPhase.STANDSTILL
         elif a * v > 0.0:
             phase = CurrentPhase.RAMP_UP
         elif a * v < 0.0:
@@ -1468,7 +1505,10 @@ class Wago672:
         elif phase is CurrentPhase.STOP:
             ratio = c["Current_Ratio_Stop"]
         else:
-            ratio = self._ratios[phase]
+            ratio = self._ratio_set.get(phase)
+            if ratio is None:
+                ratio = c[_RATIO_NAMES[phase]]
+        self.current_ratio = ratio
         self.phase_current = phase_current(c["Current"], ratio)
         if self._overcurrent.step(self.phase_current, TICK):
             self._raise(1413, f"overcurrent {self.phase_current:g} A for too long (thermal model)",
@@ -1488,7 +1528,7 @@ class Wago672:
         b = self.bits
         p, v, a, _ = self._sp
         mode = self.mode
-        put = b.set_source
+        put = b.put
         put(Bit.Reset, self.reset_flag)
         put(Bit.Warning, bool(self.errors.warning))
         put(Bit.On_Target, self.on_target)
@@ -1565,7 +1605,8 @@ class Wago672:
     def _cmd_move(self, d: bytes, source: str, immediate: bool = False, relative: bool = False) -> int:
         if not immediate and self._busy_process():
             return RC.NOT_ACCEPTED
-        self._check_stop_chain()
+        if not self._stop_chain_open():
+            return RC.ACCESS_DENIED
         value = int.from_bytes(d, "little", signed=True)
         if relative:
             base = self._last_target if self._last_target is not None else self._state().p
@@ -1582,7 +1623,8 @@ class Wago672:
     def _cmd_move_table(self, d: bytes, source: str, immediate: bool = False, relative: bool = False) -> int:
         if not immediate and self._busy_process():
             return RC.NOT_ACCEPTED
-        self._check_stop_chain()
+        if not self._stop_chain_open():
+            return RC.ACCESS_DENIED
         value = self.position_table(d[0], d[1] & 1)
         if relative:
             base = self._last_target if self._last_target is not None else self._state().p
@@ -1594,7 +1636,8 @@ class Wago672:
     def _cmd_speed(self, d: bytes, source: str, immediate: bool = False) -> int:
         if not immediate and self._busy_process():
             return RC.NOT_ACCEPTED
-        self._check_stop_chain()
+        if not self._stop_chain_open():
+            return RC.ACCESS_DENIED
         v = int.from_bytes(d[0:2], "little", signed=True)
         if not -25000 <= v <= 25000:
             raise WagoError(1117, f"SPEED velocity = {v} is outside -25000 .. 25000")
@@ -1602,9 +1645,9 @@ class Wago672:
         ok = self._speed(v, self.acc_up, self.acc_down)
         return RC.OK if ok else RC.ACCESS_DENIED
 
-    def _check_stop_chain(self) -> None:
-        if not self._stop_n_ack or not (self._sig.get("stop2_n") and self._sig.get("stop1_n")):
-            raise WagoError(1115, "Stop1_N/Stop2_N is 0: the drive cannot be started")
+    def _stop_chain_open(self) -> bool:
+        """Stop1_N and Stop2_N are 1: the drive may be started."""
+        return self._stop_n_ack and bool(self._sig.get("stop2_n") and self._sig.get("stop1_n"))
 
     def _cmd_stop_fast(self, d: bytes, source: str) -> int:
         if self.program is not None and source == "mailbox" and self.program.running:
@@ -1621,7 +1664,8 @@ class Wago672:
         return RC.OK
 
     def _cmd_reference(self, d: bytes, source: str) -> int:
-        self._check_stop_chain()
+        if not self._stop_chain_open():
+            return RC.ACCESS_DENIED
         swt, std, dirbit = d[2] & 1, (d[2] >> 1) & 1, (d[2] >> 2) & 1
         self._mailbox_reference = True
         self._source = source
@@ -1688,7 +1732,7 @@ class Wago672:
             raise WagoError(1217, f"SET_CURRENT {ratio} % is above 150 %")
         for bit, phase in enumerate((CurrentPhase.STANDSTILL, CurrentPhase.RAMP_UP, CurrentPhase.DRIVE, CurrentPhase.RAMP_DOWN)):
             if d[1] >> bit & 1:
-                self._ratios[phase] = ratio
+                self._ratio_set[phase] = ratio
         return RC.OK
 
     def __repr__(self) -> str:
@@ -1726,6 +1770,15 @@ _SIGNALS: dict[str, int] = {
     "jog_neg": Bit.Jog_Neg,
     "error_set": Bit.Error_Set,
 }
+
+_RATIO_NAMES = {
+    CurrentPhase.STANDSTILL: "Current_Ratio_StandStill",
+    CurrentPhase.RAMP_UP: "Current_Ratio_RampUp",
+    CurrentPhase.DRIVE: "Current_Ratio_Drive",
+    CurrentPhase.RAMP_DOWN: "Current_Ratio_RampDown",
+}
+
+_SIGNAL_ITEMS = tuple((name, int(bit)) for name, bit in _SIGNALS.items())
 
 _COMMANDS: dict[int, Callable[[Wago672, bytes, str], int]] = {
     Opcode.MOVE: lambda dev, d, s: dev._cmd_move(d, s),

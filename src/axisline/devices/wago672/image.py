@@ -20,6 +20,10 @@ The names of the bits are the manual's (§3.7.2): a PLC programmer reading a tra
 
 While the mailbox is on (C0.5, acknowledged by S0.5) bytes 2..7 carry MB0..MB5 instead of
 D0..D5 and byte 8 is reserved; C1..C3/S1..S3 keep their meaning (§3.7.4).
+
+Readings (wago.md §3.1): "Output byte D0 and input byte D0 are reserved" [AMBIGUOUS] is not
+followed - the per-mode tables use D0 (velocity low byte), byte offset 1 is the reserved one.
+The overview table of §3.7.1 has its column headings swapped [CONFLICT]; §3.7.3/§3.7.4 hold.
 """
 
 from __future__ import annotations

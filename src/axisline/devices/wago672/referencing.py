@@ -53,6 +53,7 @@ class RefDrive(Protocol):
     def ref_stop_fast(self) -> None: ...
     def ref_state(self) -> State: ...
     def ref_at_rest(self) -> bool: ...
+    def ref_edge(self, edge_position: float) -> None: ...
     def ref_finish(self, edge_position: float, on_limit_switch: int) -> None: ...
     def ref_fail(self, code: int, text: str) -> None: ...
 
@@ -72,6 +73,7 @@ class RefRun:
         self._dir = direction  # current search direction
         self._reversed = False
         self._prev_ref = False
+        self._prev_ls = (False, False)
         self._edge_p = 0.0
 
     @property
@@ -91,6 +93,7 @@ class RefRun:
             self.phase = RefPhase.BLOCKED
             return False
         self._prev_ref = ref
+        self._prev_ls = (lsp, lsn)
         if not self.to_limit_switch and ref:
             self.phase = RefPhase.FREE  # on the switch: free it first, against the start direction
             self.drive.ref_velocity(-self.direction * self.speed, self.acceleration)
@@ -108,6 +111,8 @@ class RefRun:
         rising = ref and not self._prev_ref
         falling = self._prev_ref and not ref
         self._prev_ref = ref
+        ls_rising = (lsp and not self._prev_ls[0], lsn and not self._prev_ls[1])
+        self._prev_ls = (lsp, lsn)
         st = d.ref_state()
         moving = 1 if st.v > 0.0 else -1 if st.v < 0.0 else 0
         if self.phase is RefPhase.FREE:
@@ -118,10 +123,11 @@ class RefRun:
                 d.ref_velocity(self.direction * self.speed, self.acceleration)
         elif self.phase is RefPhase.SEARCH:
             if self.to_limit_switch:
-                if self._limit(-self.direction, lsp, lsn) and moving == self.direction * -1:
-                    self._fail(1455, "the limit switch of the other direction was reached")
+                if ls_rising[0 if self.direction < 0 else 1]:
+                    self._fail(1455, "the limit switch of the other direction became active")
                 elif self._limit(self.direction, lsp, lsn):
                     self._edge_p = st.p
+                    d.ref_edge(st.p)
                     self.phase = RefPhase.BRAKE
                     d.ref_stop_fast()
             elif rising or (ref and moving == self._dir):
@@ -145,6 +151,7 @@ class RefRun:
                 self._fail(1455, "limit switch reached while approaching the reference edge")
             elif falling and moving == self.edge:
                 self._edge_p = st.p  # the set point the plant followed when the edge was seen
+                d.ref_edge(st.p)
                 self.phase = RefPhase.BRAKE
                 d.ref_velocity(0.0, self.acceleration)
         elif self.phase is RefPhase.BRAKE:

@@ -17,6 +17,11 @@ brake ramps can be adjusted individually", §2.1.1.3.7) - `plan_move` chains ker
 ramps: ramp-up, cruise, ramp-down, with the peak speed lowered by bisection for a short move
 and a braking ramp first when the target is behind or too close for the current speed.
 
+In a chain a ramp path is used as the ramp time it takes at full speed, T = 2 S / (v0 + v1), as
+the kernel does for short moves (docs/decisions.md K3); time/path plans from a moving start go
+through the chain too, which brakes first when the target is behind or too close. Speeds below
+1e-9 microsteps/s count as rest.
+
 `Feed` is the axis' sync source: it samples the running profile at (cycle - c0) * period and
 hands the axis its set point in axis units (microsteps / counts_per_unit).
 """
@@ -29,7 +34,7 @@ from dataclasses import dataclass
 from axisline.devices.wago672.errors import WagoError
 from axisline.motion.profiles import Limits, Profile, State, plan, plan_velocity
 
-__all__ = ["Ramp", "ramp_from_mode", "Cruise", "Chain", "plan_move", "plan_speed", "plan_stop", "Feed"]
+__all__ = ["Ramp", "ramp_from_mode", "needs_constant_speed", "Cruise", "Chain", "plan_move", "plan_speed", "plan_stop", "Feed"]
 
 _BASES = {0: "trapezoid", 1: "jerk", 2: "sin2"}
 _K = {"trapezoid": 0.0, "jerk": 1.0, "sin2": math.pi / 2.0}  # ramp time = k * da / j
@@ -164,6 +169,11 @@ def _single_shape(up: Ramp, down: Ramp) -> str | None:
     return up.shape if math.isclose(up.jerk, down.jerk, rel_tol=1e-12) else None
 
 
+def needs_constant_speed(up: Ramp, down: Ramp) -> bool:
+    """A plan with these ramps must start at a = 0 (time/path variants, chained ramp laws)."""
+    return bool(up.variant or down.variant) or _single_shape(up, down) is None
+
+
 def _change(up: Ramp, down: Ramp, s: State, vt: float) -> list:
     """Velocity change from s (a = 0) to vt: speeding up with `up`, slowing with `down`,
     a reversal as a stop with `down` and a start with `up`."""
@@ -188,27 +198,43 @@ def plan_move(start: State, target: float, vmax: float, up: Ramp, down: Ramp, v_
         v=vmax, a=up.accel, d=down.accel, j=up.jerk,
         up_time=up.time, down_time=down.time, up_path=up.path, down_path=down.path,
     )
-    if shape is not None:
+    if shape is not None and not (up.variant and start.v != 0.0):
         return plan(shape, start, State(target, v_end), limits)
+    # time/path ramps from a moving start: the chain brakes first when the target is behind or
+    # too close (the kernel's time/path plans assume a start toward the target)
     if start.a != 0.0:  # the device defers a replan with smooth ramps until a = 0
         raise WagoError(1557, f"a move with different ramp laws must start at constant speed (a = {start.a:g})")
     return _compose(start, target, vmax, up, down, v_end)
 
 
+def _as_time(r: Ramp, speed_sum: float) -> Ramp:
+    """A ramp path as the ramp time it has at full speed, T = 2 S / |v_from + v_to| (docs/decisions.md
+    K3: shorter moves keep the times), so that a short move can lower its peak speed."""
+    if r.path is None:
+        return r
+    return Ramp(f"{r.base}/time", r.accel, time=2.0 * r.path / max(abs(speed_sum), 1e-9))
+
+
 def _compose(start: State, target: float, vmax: float, up: Ramp, down: Ramp, v_end: float) -> Chain:
     d = target - start.p
-    v0 = start.v
+    v0 = start.v if abs(start.v) > 1e-9 else 0.0  # a speed below 1e-9 microsteps/s is rest
+    start = State(start.p, v0, 0.0)
     if d == 0.0 and v0 == 0.0 and v_end == 0.0:
         return Chain([Cruise(start.p, 0.0, 0.0)])
     sgn = math.copysign(1.0, d if d != 0.0 else (v0 if v0 != 0.0 else 1.0))
     if v0 != 0.0:
         # can the target be reached in the current direction of travel?
-        direct = _change(up, down, start, v_end) if v_end * v0 >= 0.0 else _change(up, down, start, 0.0)
+        full = max(abs(v0), vmax)
+        bu, bd = _as_time(up, full), _as_time(down, full)
+        direct = _change(bu, bd, start, v_end) if v_end * v0 >= 0.0 else _change(bu, bd, start, 0.0)
         if (v0 > 0.0) != (d > 0.0) or abs(_span(direct)) > abs(d):
-            brake = _change(up, down, start, 0.0)
+            brake = _change(bu, bd, start, 0.0)
             rest = _compose(_end(brake[-1]), target, vmax, up, down, v_end)
             return Chain(brake + rest.parts)
     vf = v_end
+    # moving toward the target (or at rest): a ramp path becomes the time it takes at full speed
+    vt = sgn * vmax
+    up, down = _as_time(up, v0 + vt), _as_time(down, vt + vf)
 
     def parts_for(vp: float) -> list:
         first = _change(up, down, start, sgn * vp)
@@ -234,9 +260,8 @@ def _compose(start: State, target: float, vmax: float, up: Ramp, down: Ramp, v_e
     vp = lo
     covered = sgn * _span(parts_for(vp)) if vp > 0.0 else 0.0
     rest = sgn * d - covered
-    if vp <= 0.0:  # a move so short that no speed is reached: creep at the smallest speed
-        vp = max(rest, 1e-9)
-        return Chain([Cruise(start.p, sgn * vp, rest / vp)])
+    if vp <= 0.0:  # a move below the bisection's resolution: one constant-acceleration move
+        return Chain([plan("trapezoid", start, State(target, vf), Limits(v=vmax, a=up.accel, d=down.accel))])
     return _with_cruise(start, sgn * vp, rest / vp, up, down, vf)
 
 
@@ -249,6 +274,8 @@ def _with_cruise(start: State, vp: float, cruise: float, up: Ramp, down: Ramp, v
 
 def plan_speed(start: State, v_target: float, up: Ramp, down: Ramp):
     """Speed control: run to v_target [microsteps/s] (signed) and keep it."""
+    if start.a == 0.0 and start.v != 0.0 and abs(start.v) <= 1e-9:
+        start = State(start.p, 0.0, 0.0)  # a speed below 1e-9 microsteps/s is rest
     if start.a != 0.0 and (up.variant or down.variant):
         raise WagoError(1557, f"a ramp time/path speed change must start at constant speed (a = {start.a:g})")
     if start.a != 0.0:

@@ -1,0 +1,35 @@
+"""WAGO 750-672 stepper controller personality (manual: WAGO-I/O-SYSTEM 750, 750-672, V1.0.5; spec: wago.md).
+
+    from axisline.devices.wago672 import Wago672, ConfigTable
+    dev = Wago672(axis, inputs={"Input1": True})
+
+Modules: image (12-byte process image), config_table (512-byte configuration), units (scaling),
+errors (error table, error memory, LED blink code), bits (bit field seam), trajectory (ramp
+types on the kernel's profile generator), referencing (reference runs), thermal (current phases,
+overcurrent model), device (the module: handshakes, modes, move commands; its docstring lists
+the decisions taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points).
+"""
+
+from axisline.devices.wago672.bits import Bit, BitTable
+from axisline.devices.wago672.config_table import ConfigTable, ConfigValueError
+from axisline.devices.wago672.device import RC, MailboxHandler, NoMailbox, Opcode, RunProgram, Wago672
+from axisline.devices.wago672.errors import ERRORS, ErrorMemory, WagoError
+from axisline.devices.wago672.image import InputImage, OutputImage
+
+__all__ = [
+    "Wago672",
+    "ConfigTable",
+    "ConfigValueError",
+    "Bit",
+    "BitTable",
+    "ERRORS",
+    "ErrorMemory",
+    "WagoError",
+    "InputImage",
+    "OutputImage",
+    "Opcode",
+    "RC",
+    "MailboxHandler",
+    "NoMailbox",
+    "RunProgram",
+]
