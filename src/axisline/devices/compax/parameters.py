@@ -1,0 +1,762 @@
+"""COMPAX XX70 cam parameters as data, and the `Parameters` store (compax.md §3, manual §23).
+
+    from axisline.devices.compax.parameters import Parameters, PARAMETERS
+    params = Parameters()              # defaults (the state after RESETP)
+    params[36] = 2.0                   # write: range-checked, not yet effective
+    params.written[36], params[36]     # 2.0 written, 1.0 still valid (params[n] is the valid value)
+    params.make_valid("VP")            # P36 is now armed ...
+    params.make_valid("SETC")          # ... and valid at SETC or the next curve zero point
+    params[36]                         # 2.0
+
+Every parameter of compax.md §3 is a `ParamSpec` in `PARAMETERS`: number, meaning, unit,
+min, default, max, "valid from", allowed values, resolution. Parameters of the standard
+COMPAX that the supplement only references (§3.5: P1, P6, P13, P21, P40...P49, ...) are
+there too, marked ``documented=False``: their ranges are in the standard User Guide, which
+we do not have, so only what the supplement says about them is checked.
+
+Written, armed, valid
+---------------------
+A value written (``params[n] = v``) is range-checked at once and kept as the *written*
+value (``params.written[n]``: what the operator and the interface read back). It becomes
+*valid* - ``params[n]`` and ``params.valid[n]``, what the drive works with - as the
+parameter's "valid from" says:
+
+==========================  ======================================================  =========
+valid from                  becomes valid                                           params
+==========================  ======================================================  =========
+immediately                 at once                                                 P93, P210
+VP                          with the command VP                                     most
+VC                          with VC (valid configuration; drive disabled)           P80...P98, P143, P144
+VP & SETC                   VP arms it, the next SETC makes it valid                P34
+VP & curve zero / SETC      VP arms it; next curve zero point or SETC (footnote 5)  P36
+VP & next curve             VP arms it; the next LOOP (the start of a curve);        P33
+                            values 10...12 also at the end of the current cycle
+VP & end of cycle           VP arms it; the end of the current curve cycle or LOOP  P32
+VP (P35)                    with VP; but if P30 >= 10 and the slave is synchronous  P35
+                            (O16 = 1) only at the end of the master cycle (§17)
+==========================  ======================================================  =========
+
+`Parameters.make_valid(event)` takes the events "VP", "VC", "SETC", "LOOP",
+"curve_zero" and "cycle_end" and returns the numbers whose valid value changed
+(`accept` is the same and also takes "CYCLE" for "cycle_end"). The cam operation sends
+"SETC" / "LOOP" when it executes those commands and "cycle_end" at every master cycle
+wrap. ``params.synchronous`` (O16) delays a P35 accepted with P30 >= 10 to the cycle end;
+it stays False unless the owner sets it (the master chain may do that transfer itself).
+
+Cross-parameter rules are checked when the values become valid, so the order of writing
+does not matter: at VP, P79 < P13 and the HEDA rules (P243 bit 0/1 needs P250 = 1 and
+P245 = P246 = 0); at VC, the roller-feed ranges (P80 = 32: P83 30...3000 mm, P83/P85 <=
+300 mm) and the "Increments" resolution (P80 = 16, P90 = 0: P83 = 2^n, n = 4...16). A
+failed VP or VC raises `CompaxError` and makes nothing valid.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. §2.5 / §4 formula 3 [CONFLICT] "P93 = 0 (Increments)" / "P93 = 1 (mm) or 3 (degree)" in
+   the value-range formulas: read P90 (units); P93 is the operating mode and has no value
+   0. `scaled_slave_cycle` takes P90.
+2. §2.3 / §3.2 [CONFLICT] P82 max 7000 (text §4.3) vs 70 000 kgcm² (table §23): the
+   parameter table, 70 000, because it is the manual's list of accepted ranges.
+3. §2.16 [CONFLICT] P179 "2^23 ... ca. 5.8 hours" vs table max "4Mio": the table,
+   4 000 000 ms; 2^23 ms (2.33 h, not 5.8 h) is rejected.
+4. §3.1 P180 default "0 (ParameterEditor) / 100 (after RESETP)": 100 - we are the
+   device, and RESETP is the device's own reset.
+5. §3.1 P180 has no maximum ("or >100": unlimited); none is imposed. Its "valid from" is
+   not given [GAP]: VP like the other label parameters.
+6. §2.20 [CONFLICT] "P36 = S_T* = whole number" (P36 range ±1000): P36 keeps its table
+   range; `drift_free_problems` does not ask for P36 = S_T* (implausible, cf. the gear
+   example of §24 itself, which uses P36 = 1). "P83 = P93 = 2^n" there is read as
+   P83 = P98 = 2^n as in its own example (P83 = P98 = 1024); only P83 = 2^a is checked.
+7. §3.1 P33 values: the table lists 0, 1, 2, 11, 12; §15.3.2 says "=10...12 ... The single
+   digit indicates the label synchronization operation mode", so 10 (none, triggered) is
+   allowed too.
+8. §3.1 P32 min 0.000000, although §14.2 writes |P32|: the table's minimum (0) is
+   enforced; the upper limit 10·M_T (10·S_T) depends on the curve and is checked by
+   `check_label_sensor_distance`.
+9. §2.10 [CONFLICT] P31 table wording vs §19.1: the meanings below are §19.1's.
+10. §3.5 / ambiguity 8: P76 "0...16", P77 "0...18", yet §13.2 adds D/A signals 20...24:
+    the quantity (pre-comma part) of P73, P74, P76, P77 may be 0...18 or 20...24.
+    The password protection of P76/P77 is not modelled.
+11. "cycle_end" and "curve_zero" are the same instant (the master cycle wrap is the
+    curve zero point of the next cycle); both names are accepted and do the same.
+12. P35 triggered transfer (§17): "Triggered transfer is only done in synchronous mode,
+    i.e. with O16=1. Otherwise P35 is always transferred immediately." A P35 armed while
+    synchronous is transferred at once when ``synchronous`` becomes False.
+13. VC validates the VC parameters only and VP the VP parameters only (the supplement
+    does not say that one implies the other).
+14. RESETP sets every parameter's written and valid value to its default and clears
+    everything pending (a reset, not a write).
+15. [GAP] defaults the supplement does not give: P80 = 16 (universal drive, the only
+    drive type with the drift-free "Increments" unit), P90 = 1 (mm), P144 = 4 (the only
+    documented value), P13 = 10 (units; keeps the default P79 = 1 < P13). Standard
+    parameters without a documented default start at 0 (P21 at 1, the neutral factor).
+16. Values are stored at the parameter's resolution (e.g. 6 decimals for P35/P36 as the
+    table prints "1.000000"); integer parameters accept integral numbers only.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from enum import Enum
+from fractions import Fraction
+from typing import Any
+
+from axisline.devices.compax import E_UNKNOWN, E_VALUE, CompaxError, UnknownNumberError
+
+__all__ = [
+    "AUX_VALENCES",
+    "EVENTS",
+    "MAX_SCALED_CYCLE",
+    "PARAMETERS",
+    "ParamSpec",
+    "Parameters",
+    "Validity",
+    "aux_mask",
+    "check_label_sensor_distance",
+    "check_master_cycle_range",
+    "check_slave_cycle_range",
+    "drift_free_problems",
+    "max_travel_revolutions",
+    "p35_ramp_error_percent",
+    "scaled_master_cycle",
+    "scaled_slave_cycle",
+]
+
+#: Largest scaled master / slave cycle in increments (§4.5.3, §24).
+MAX_SCALED_CYCLE = 4_000_000
+
+#: P37 / P38 valence of each digital auxiliary output (§13.1.1, §13.1.2): O7 = 2^6 ... O14 = 2^13.
+AUX_VALENCES: dict[str, int] = {f"O{k}": 1 << (k - 1) for k in range(7, 15)}
+_AUX_BITS = sum(AUX_VALENCES.values())  # 16320: "O7...O14 to be enabled by P38=16320"
+
+
+class Validity(str, Enum):
+    """When a written value becomes effective ("valid from" column of §23)."""
+
+    IMMEDIATE = "immediately"
+    VP = "VP"
+    VC = "VC"
+    VP_SETC = "VP & SETC"
+    VP_CURVE_ZERO = "VP & next curve zero point or SETC"
+    VP_NEXT_CURVE = "VP & next curve (10...12: or at the end of the current cycle)"
+    VP_CYCLE_END = "VP & at the end of the current curve cycle (or LOOP)"
+    VP_P35 = "VP (P30 >= 10 and synchronous: at the end of the master cycle)"
+
+
+#: Events `Parameters.make_valid` accepts.
+EVENTS = ("VP", "VC", "SETC", "LOOP", "curve_zero", "cycle_end")
+
+_ARMED_BY_VP = {
+    Validity.VP_SETC,
+    Validity.VP_CURVE_ZERO,
+    Validity.VP_NEXT_CURVE,
+    Validity.VP_CYCLE_END,
+}
+
+
+@dataclass(frozen=True, slots=True)
+class ParamSpec:
+    """One parameter: the manual's row, as data.
+
+    ``minimum``/``maximum`` None: not limited by the manual (any finite number).
+    ``allowed``: the only values accepted (codes). ``bitmask``: only these bits may be set.
+    ``decimals``: resolution (0 for integer parameters). ``documented=False``: a standard
+    COMPAX parameter the supplement only references; its range is not checked beyond the
+    type and what the supplement says.
+    """
+
+    number: int
+    meaning: str
+    unit: str
+    minimum: float | None
+    default: float
+    maximum: float | None
+    valid_from: Validity
+    allowed: tuple[int, ...] | None = None
+    meanings: tuple[tuple[int, str], ...] = ()
+    decimals: int = 0
+    bitmask: int | None = None
+    documented: bool = True
+    source: str = ""
+    notes: str = ""
+
+    @property
+    def integer(self) -> bool:
+        return self.decimals == 0
+
+    def range_text(self) -> str:
+        """What is allowed, for error messages."""
+        if self.allowed is not None:
+            return "one of " + ", ".join(str(v) for v in self.allowed)
+        if self.bitmask is not None:
+            return f"a sum of the valences {', '.join(str(1 << b) for b in range(24) if self.bitmask >> b & 1)} (0 ... {self.bitmask})"
+        lo = "-inf" if self.minimum is None else _fmt(self.minimum, self.decimals)
+        hi = "+inf" if self.maximum is None else _fmt(self.maximum, self.decimals)
+        kind = "an integer" if self.integer else "a number"
+        return f"{kind} {lo} ... {hi}"
+
+
+def _fmt(value: float, decimals: int) -> str:
+    if decimals == 0:
+        return str(int(value))
+    return f"{value:.{decimals}f}"
+
+
+def _p(number: int, meaning: str, unit: str, minimum: float | None, default: float, maximum: float | None,
+       valid_from: Validity, **kw: Any) -> ParamSpec:
+    return ParamSpec(number, meaning, unit, minimum, default, maximum, valid_from, **kw)
+
+
+_V = Validity
+_DA_QUANTITIES = tuple(range(0, 19)) + tuple(range(20, 25))
+_P31_MEANINGS = (
+    (0, "I16='1' statical enabling, I16='0' statical disabling"),
+    (1, "I16='1' enabling rounded off with the encoder zero pulse; I16='0' disabling"),
+    (2, "enabling after SETC n by a positive edge of I16; disabling by a further SETC n and I16='0'"),
+    (3, "enabling after SETC n by a positive edge of I16; disabled automatically after one master cycle, not when I16='1'"),
+    (4, "enabling after SETC n by a positive edge of I16; disabling by a further SETC n independent of I16"),
+    (5, "enabling after SETC n by a positive edge of I16; disabled automatically after one master cycle, independent of I16"),
+    (9, "I16='1' statical enabling for HEDA coupling (counter channel not reset)"),
+)
+
+_SPECS: tuple[ParamSpec, ...] = (
+    # --- standard parameters the supplement references (§3.5) -----------------------------
+    _p(1, "Standard parameter; must be 0 for POSR CAM ('Set P1=0!', §9)", "", None, 0, None, _V.VP,
+       decimals=3, documented=False, source="§9"),
+    _p(6, "Reserve time used by the STOP ramp (standard parameter)", "ms", 0, 0, None, _V.VP,
+       decimals=3, documented=False, source="§12.0.1"),
+    _p(11, "Software end limit, positive (+4 000 000 switches supervision off)", "according to P90",
+       1, 4_000_000, 4_000_000, _V.VP, decimals=3, source="§4.4"),
+    _p(12, "Software end limit, negative (-4 000 000 switches supervision off)", "according to P90",
+       -4_000_000, -4_000_000, -1, _V.VP, decimals=3, source="§4.4"),
+    _p(13, "Tracking error limit (standard parameter; upper bound of P79)", "according to P90",
+       0, 10, None, _V.VP, decimals=3, documented=False, source="§23 (P79 < P13)"),
+    _p(18, "HEDA: bit 0 PLC data interface, bit 1 fast start on I15, bit 3 fast start on HEDA", "",
+       None, 0, None, _V.VP, bitmask=0b1011, source="§6, §23",
+       notes="bits 1 and 3 only with the standard device CPX XX00; PLC data interface after Power on"),
+    _p(21, "Factor for position calculation (standard parameter; 1 for drift-free operation)", "",
+       None, 1, None, _V.VP, decimals=6, documented=False, source="§24"),
+    # --- cam parameters (§23) -------------------------------------------------------------
+    _p(30, "Select master input", "", None, 0, None, _V.VP, allowed=(0, 1, 10, 11),
+       meanings=((0, "coupled to the master by an encoder"),
+                 (1, "not coupled: internal time base simulates the master speed"),
+                 (10, "encoder; P35 accepted only when the master cycle is reached"),
+                 (11, "internal time base; P35 accepted only when the master cycle is reached")),
+       source="§16, §17, §23"),
+    _p(31, "Operation mode of I16 'enabling of master position'", "", None, 0, None, _V.VP,
+       allowed=(0, 1, 2, 3, 4, 5, 9), meanings=_P31_MEANINGS, source="§19.1, §23",
+       notes="with the internal time base (P30=1) P31=2 is treated like P31=0; P31=1 not with HEDA"),
+    _p(32, "Distance of label sensor", "unit of the corresponding cycle", 0, 0, None, _V.VP_CYCLE_END,
+       decimals=6, source="§14.1, §15.3.2, §23", notes="max 10·M_T (10·S_T): check_label_sensor_distance"),
+    _p(33, "Operation mode of label synchronization", "", None, 0, None, _V.VP_NEXT_CURVE,
+       allowed=(0, 1, 2, 10, 11, 12),
+       meanings=((0, "no label synchronization"), (1, "master related"), (2, "slave related"),
+                 (10, "none, accepted at the end of the current cycle"),
+                 (11, "master related, accepted at the end of the current cycle"),
+                 (12, "slave related, accepted at the end of the current cycle")),
+       source="§14.6.1, §15.3.2, §23"),
+    _p(34, "Coupling mode (bit sum)", "", None, 0, None, _V.VP_SETC, allowed=tuple(range(8)),
+       meanings=((0, "without coupling and decoupling positions"),
+                 (1, "bit 0: with coupling and decoupling positions M_E / M_A"),
+                 (2, "bit 1: leave cam operation after decoupling"),
+                 (4, "bit 2: leave curve when the loop counter terminates, at the end of the master cycle")),
+       source="§11, §12, §15.1, §23", notes="M_S and M_B are taken into account independently of P34"),
+    _p(35, "Factor in the master input channel (scaling factor for master)", "", -1000, 1, 1000, _V.VP_P35,
+       decimals=6, source="§17, §18, §23", notes="ramped with P179"),
+    _p(36, "Scaling factor for slave", "", -1000, 1, 1000, _V.VP_CURVE_ZERO, decimals=6,
+       source="§23 footnote 5"),
+    _p(37, "Reset value for digital auxiliary functions (O7 = 64 ... O14 = 8192)", "", None, 0, None, _V.VP,
+       bitmask=_AUX_BITS, source="§13.1.2"),
+    _p(38, "Mask for digital auxiliary functions (O7 = 64 ... O14 = 8192; 16320 = all)", "", None, 0, None,
+       _V.VP, bitmask=_AUX_BITS, source="§13.1.1"),
+    _p(39, "Ramp time of internal time base", "ms", 0, 0, 4_000_000, _V.VP, decimals=3, source="§16, §23"),
+    *(
+        _p(n, "Operation parameter (argument of SETC .P4x, SETM .P4x, LOOP .P4x)", "", None, 0, None,
+           _V.IMMEDIATE, decimals=3, documented=False, source="§9")
+        for n in range(40, 50)
+    ),
+    _p(68, "Filter for external speed feed forward (0: filter off)", "%", 0, 0, 550, _V.VP, decimals=3,
+       source="§23 footnote 6"),
+    _p(71, "D/A monitor option D1: gain channel 0", "", None, 0, None, _V.VP, decimals=3, documented=False,
+       source="§13.2", notes="P71=10: 100 % = 1 V; P71=100: 100 % = 10 V"),
+    _p(72, "D/A monitor option D1: gain channel 1", "", None, 0, None, _V.VP, decimals=3, documented=False,
+       source="§13.2"),
+    _p(73, "D/A monitor option D1: quantity on channel 0 (1...18 standard, 20...24 cam)", "", None, 0, None,
+       _V.VP, allowed=_DA_QUANTITIES, source="§13.2"),
+    _p(74, "D/A monitor option D1: quantity on channel 1 (1...18 standard, 20...24 cam)", "", None, 0, None,
+       _V.VP, allowed=_DA_QUANTITIES, source="§13.2"),
+    _p(76, "Service D/A monitor channel 2: quantity (pre-comma), gain (post-comma x 10 000 000)", "", 0, 0,
+       24.9999999, _V.VP, decimals=7, source="§13.2"),
+    _p(77, "Service D/A monitor channel 3: quantity (pre-comma), gain (post-comma x 10 000 000)", "", 0, 0,
+       24.9999999, _V.VP, decimals=7, source="§13.2"),
+    _p(79, "Max. acceptable tracking warning (indicated by O15)", "according to P90", 0, 1, None, _V.VP,
+       decimals=3, source="§19.2, §23", notes="must be < P13"),
+    # --- drive / roller feed (§23: P80...P88 'only apply to the drive type Roller Feed') ----
+    _p(80, "Drive type", "", None, 16, None, _V.VC, allowed=(2, 4, 8, 16, 32),
+       meanings=((2, "spindle drive"), (4, "rack and pinion"), (8, "timing belt"), (16, "universal drive"),
+                 (32, "roller feed (supplement)")), source="§4.3, §23"),
+    _p(82, "Moment of inertia of the feed rollers", "kgcm²", 0, 0, 70_000, _V.VC, decimals=3, source="§23"),
+    _p(83, "Circumference of the slave feed rollers (universal drive: distance per motor revolution)",
+       "mm (P90)", 0.001, 30, 4_000_000, _V.VC, decimals=3, source="§4.2.2, §4.3, §23",
+       notes="roller feed: 30...3000 mm; universal drive in increments: 2^n, n = 4...16"),
+    _p(84, "Moment of inertia of gear box and clutch (to the drive axis)", "kgcm²", 0, 0, 200, _V.VC,
+       decimals=2, source="§23"),
+    _p(85, "Gear ratio (motor : gear)", "", 1, 1, 100, _V.VC, decimals=7, source="§23"),
+    _p(88, "Translatory moved mass", "kg", 0, 0, 500, _V.VC, decimals=3, source="§23"),
+    _p(90, "Units for distance indication", "", None, 1, None, _V.VC, allowed=(0, 1, 2, 3),
+       meanings=((0, "increments (supplement)"), (1, "mm"), (2, "inch"),
+                 (3, "degree (supplement; millidegree in the universal drive)")), source="§4.2, §23"),
+    _p(93, "Operation mode", "", None, 3, None, _V.IMMEDIATE, allowed=(1, 2, 3, 4),
+       meanings=((1, "normal"), (2, "endless"), (3, "reset mode (supplement, default)"), (4, "speed control")),
+       source="§4.1, §23"),
+    _p(98, "Distance of master axis per encoder revolution", "unit of M_T", 0, 360, 4_000_000, _V.VC,
+       decimals=3, source="§4.5.1, §23"),
+    _p(143, "Encoder pulses per revolution (channel 1)", "", 128, 4096, 2_000_000, _V.VC, source="§4.5.2, §23"),
+    _p(144, "Master input channel", "", None, 4, None, _V.VC, allowed=(4,),
+       meanings=((4, "encoder module E2 or E4 (channel 1)"),), source="§5, §23"),
+    _p(179, "Ramp for P35 (ms per change of 1.0; 0 or 1: jump)", "ms", 0, 0, 4_000_000, _V.VP, source="§18, §23"),
+    _p(180, "Label correction limitation", "%", 0, 100, None, _V.VP, decimals=3, source="§14.6",
+       notes="0, 100 or >100: initial correction unlimited"),
+    _p(184, "HEDA process value sent (master)", "", None, 0, None, _V.VP, allowed=(0, 40, 42, 43, 44, 45, 46),
+       meanings=((40, "encoder position + period duration"), (42, "internal time base / encoder rate before P35"),
+                 (43, "scaled master position before P35"), (44, "position set point, resolver increments"),
+                 (45, "position actual value, resolver increments"), (46, "differentiated resolver position")),
+       source="§6"),
+    _p(188, "HEDA process value received (slave)", "", None, 0, None, _V.VP, allowed=(0, 40, 42, 43, 140),
+       meanings=((40, "encoder coupling (master P184=40)"), (42, "internal time base"),
+                 (43, "normalized master position"), (140, "encoder coupling for other input signals")),
+       source="§6"),
+    _p(210, "Parallel mode", "", None, 0, None, _V.IMMEDIATE, allowed=(0, 1),
+       meanings=((0, "linear processing of the program memory"),
+                 (1, "program continues during positioning, stops at the next positioning command")),
+       source="§15.1, §23"),
+    _p(212, "HEDA variant restriction (standard parameter; XX60 with P212=3/4 not as HEDA slave)", "", None, 0,
+       None, _V.VP, decimals=0, documented=False, source="§6"),
+    _p(215, "Direction of rotation (standard parameter)", "", None, 0, None, _V.VP, decimals=0, documented=False,
+       source="§14.6.1"),
+    _p(233, "Optimizing indicator shown on S13 (XX70: 31, 32, 33, 37)", "", 0, 0, None, _V.VP, documented=False,
+       source="§21"),
+    _p(234, "Optimizing indicator shown on S14 (XX70: 31, 32, 33, 37)", "", 0, 0, None, _V.VP, documented=False,
+       source="§21"),
+    _p(243, "HEDA operation mode", "", None, 0, None, _V.VP, allowed=(0, 1, 2),
+       meanings=((0, "P250=0: independent single axis; P250=1...9: slave to IPM"), (1, "COMPAX as master"),
+                 (2, "passive slave to a COMPAX master")), source="§6"),
+    _p(245, "Outputs O1...O8 assigned to the HEDA bus", "", 0, 0, 255, _V.IMMEDIATE, source="§6"),
+    _p(246, "Outputs O9...O16 assigned to the HEDA bus", "", 0, 0, 255, _V.IMMEDIATE, source="§6"),
+    _p(247, "HEDA: max. average errors in transmission", "", 0, 5, None, _V.VP, documented=False, source="§6"),
+    _p(248, "HEDA: max. errors in transmission", "", 0, 15, None, _V.VP, documented=False, source="§6"),
+    _p(249, "HEDA: synchronization supervision", "", 0, 10, None, _V.VP, documented=False, source="§6"),
+    _p(250, "HEDA device address", "", 0, 0, 9, _V.VP, source="§6"),
+)
+
+#: Every parameter by number.
+PARAMETERS: dict[int, ParamSpec] = {spec.number: spec for spec in _SPECS}
+
+
+def _spec(number: Any) -> ParamSpec:
+    if isinstance(number, bool) or not isinstance(number, int):
+        raise UnknownNumberError(f"parameter number {number!r} must be an int (e.g. 31 for P31)",
+                                 code=E_UNKNOWN, field="parameter", value=number)
+    spec = PARAMETERS.get(number)
+    if spec is None:
+        raise UnknownNumberError(
+            f"P{number} is not a parameter of the COMPAX XX70 model (known: "
+            f"{', '.join(f'P{n}' for n in sorted(PARAMETERS))})",
+            code=E_UNKNOWN, field="parameter", value=number,
+        )
+    return spec
+
+
+def _check_value(spec: ParamSpec, value: Any) -> float | int:
+    """The value as stored (int for integer parameters), or CompaxError naming P, value, range."""
+    name = f"P{spec.number}"
+    if isinstance(value, bool):
+        raise CompaxError(f"{name} = {value!r} is not a number; allowed is {spec.range_text()}",
+                          code=E_VALUE, field=name, value=value, allowed=spec.range_text())
+    if not isinstance(value, (int, float, Fraction)):
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise CompaxError(f"{name} = {value!r} is not a number; allowed is {spec.range_text()}",
+                              code=E_VALUE, field=name, value=value, allowed=spec.range_text()) from None
+    number = float(value)
+    if not math.isfinite(number):
+        raise CompaxError(f"{name} = {value!r} not allowed; allowed is {spec.range_text()}",
+                          code=E_VALUE, field=name, value=value, allowed=spec.range_text())
+    if spec.integer:
+        if number != math.floor(number):
+            raise CompaxError(f"{name} = {value!r} not allowed; allowed is {spec.range_text()}",
+                              code=E_VALUE, field=name, value=value, allowed=spec.range_text())
+        stored: float | int = int(number)
+    else:
+        stored = round(number, spec.decimals) + 0.0
+    bad = False
+    if spec.allowed is not None and stored not in spec.allowed:
+        bad = True
+    if spec.bitmask is not None and (stored < 0 or int(stored) & ~spec.bitmask):
+        bad = True
+    if spec.minimum is not None and stored < spec.minimum:
+        bad = True
+    if spec.maximum is not None and stored > spec.maximum:
+        bad = True
+    if spec.number in (73, 74, 76, 77) and int(stored) not in _DA_QUANTITIES:
+        bad = True  # decision 10: quantity 19 does not exist
+    if bad:
+        raise CompaxError(f"{name} = {value!r} out of range; allowed is {spec.range_text()}",
+                          code=E_VALUE, field=name, value=value, allowed=spec.range_text())
+    return stored
+
+
+class _View(Mapping[int, float]):
+    """Read-only mapping of one value layer (written or valid) by parameter number."""
+
+    __slots__ = ("_values",)
+
+    def __init__(self, values: dict[int, Any]) -> None:
+        self._values = values
+
+    def __getitem__(self, number: int) -> Any:
+        _spec(number)
+        return self._values[number]
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(sorted(self._values))
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+
+class Parameters:
+    """All parameters with their written, armed and valid values (see the module doc).
+
+    ``params[n]`` reads the valid value (in effect), ``params[n] = v`` writes one
+    (range-checked; immediately-valid parameters become valid at once).
+    ``params.written[n]`` is the value last written; ``params.pending()`` lists what is
+    written or armed but not yet valid. Unknown numbers raise `UnknownNumberError`
+    (a CompaxError and a KeyError).
+    """
+
+    def __init__(self) -> None:
+        self._written: dict[int, Any] = {}
+        self._valid: dict[int, Any] = {}
+        self._armed: dict[int, Any] = {}
+        self._unsent: set[int] = set()  # written since the last VP / VC
+        self._synchronous = False
+        self.valid: Mapping[int, Any] = _View(self._valid)
+        self.written: Mapping[int, Any] = _View(self._written)
+        self.resetp()
+
+    # -- access --------------------------------------------------------------------------
+
+    @staticmethod
+    def spec(number: int) -> ParamSpec:
+        return _spec(number)
+
+    def __getitem__(self, number: int) -> Any:
+        _spec(number)
+        return self._valid[number]
+
+    def __setitem__(self, number: int, value: Any) -> None:
+        spec = _spec(number)
+        stored = _check_value(spec, value)
+        self._written[number] = stored
+        if spec.valid_from is Validity.IMMEDIATE:
+            self._valid[number] = stored
+            self._unsent.discard(number)
+        else:
+            self._unsent.add(number)
+
+    def __contains__(self, number: object) -> bool:
+        return number in PARAMETERS
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(sorted(PARAMETERS))
+
+    def format(self, number: int, *, valid: bool = False) -> str:
+        """The value as the device prints it (integer parameters without decimals)."""
+        spec = _spec(number)
+        value = (self._valid if valid else self._written)[number]
+        return _fmt(value, spec.decimals)
+
+    def pending(self) -> dict[int, str]:
+        """Numbers not yet valid: 'written' (waits for VP / VC) or 'armed' (waits for its trigger)."""
+        out = {n: "armed" for n in self._armed}
+        out.update({n: "written" for n in self._unsent})
+        return dict(sorted(out.items()))
+
+    def resetp(self) -> None:
+        """RESETP: every parameter to its default, written and valid; nothing pending."""
+        for number, spec in PARAMETERS.items():
+            value = int(spec.default) if spec.integer else float(spec.default)
+            self._written[number] = value
+            self._valid[number] = value
+        self._armed.clear()
+        self._unsent.clear()
+
+    # -- synchronous operation (P35 triggered transfer) --------------------------------------
+
+    @property
+    def synchronous(self) -> bool:
+        """O16, set by the cam operation; a P35 armed for the cycle end is taken when it drops."""
+        return self._synchronous
+
+    @synchronous.setter
+    def synchronous(self, value: bool) -> None:
+        self._synchronous = bool(value)
+        if not self._synchronous and 35 in self._armed:
+            self._valid[35] = self._armed.pop(35)
+
+    # -- acceptance --------------------------------------------------------------------------
+
+    def accept(self, event: str) -> list[int]:
+        """`make_valid` with the event names any case, "CYCLE" meaning "cycle_end"."""
+        name = str(event)
+        aliases = {"cycle": "cycle_end", "cycle_end": "cycle_end", "curve_zero": "curve_zero",
+                   "vp": "VP", "vc": "VC", "setc": "SETC", "loop": "LOOP"}
+        return self.make_valid(aliases.get(name.lower(), name))
+
+    def make_valid(self, event: str) -> list[int]:
+        """Apply an acceptance event; returns the numbers whose valid value changed.
+
+        "VP" / "VC": written values of VP / VC parameters become valid (or armed for the
+        triggered ones); cross-parameter rules are checked first and a violation raises
+        CompaxError with nothing changed. "SETC", "LOOP", "curve_zero" / "cycle_end":
+        armed values whose trigger this is become valid.
+        """
+        if event not in EVENTS:
+            raise CompaxError(f"event {event!r} unknown; allowed: {', '.join(EVENTS)}",
+                              field="event", value=event, allowed=", ".join(EVENTS))
+        before = dict(self._valid)
+        if event == "VP":
+            self._accept_vp()
+        elif event == "VC":
+            self._accept_vc()
+        else:
+            for number in sorted(self._armed):
+                if self._fires(number, event):
+                    self._valid[number] = self._armed.pop(number)
+        return [n for n in sorted(self._valid) if self._valid[n] != before[n]]
+
+    def _fires(self, number: int, event: str) -> bool:
+        kind = PARAMETERS[number].valid_from
+        cycle_end = event in ("cycle_end", "curve_zero")
+        if kind is Validity.VP_SETC:
+            return event == "SETC"
+        if kind is Validity.VP_CURVE_ZERO:
+            return event == "SETC" or cycle_end
+        if kind is Validity.VP_NEXT_CURVE:
+            return event == "LOOP" or (cycle_end and self._armed[number] >= 10)
+        if kind is Validity.VP_CYCLE_END:
+            return event == "LOOP" or cycle_end
+        if kind is Validity.VP_P35:
+            return cycle_end
+        return False
+
+    def _accept_vp(self) -> None:
+        numbers = sorted(n for n in self._unsent if PARAMETERS[n].valid_from is not Validity.VC)
+        after = dict(self._valid)
+        after.update({n: self._written[n] for n in numbers})
+        self._check_vp_rules(after)
+        for number in numbers:
+            kind = PARAMETERS[number].valid_from
+            value = self._written[number]
+            if kind in _ARMED_BY_VP:
+                self._armed[number] = value
+            elif kind is Validity.VP_P35 and self._valid[30] >= 10 and self._synchronous:
+                self._armed[number] = value  # P30 is accepted first (sorted), so its new value counts
+            else:
+                self._armed.pop(number, None)
+                self._valid[number] = value
+            self._unsent.discard(number)
+
+    def _accept_vc(self) -> None:
+        numbers = sorted(n for n in self._unsent if PARAMETERS[n].valid_from is Validity.VC)
+        after = dict(self._valid)
+        after.update({n: self._written[n] for n in numbers})
+        self._check_vc_rules(after)
+        for number in numbers:
+            self._valid[number] = self._written[number]
+            self._unsent.discard(number)
+
+    @staticmethod
+    def _check_vp_rules(v: Mapping[int, Any]) -> None:
+        if not v[79] < v[13]:
+            raise CompaxError(f"P79 = {v[79]} must be smaller than P13 = {v[13]} (§23: P79 < P13)",
+                              code=E_VALUE, field="P79", value=v[79], allowed=f"< P13 = {v[13]}")
+        if v[243] in (1, 2):
+            if v[250] != 1:
+                raise CompaxError(
+                    f"P243 = {v[243]} (HEDA master / passive slave) needs P250 = 1, got P250 = {v[250]} (§6)",
+                    code=E_VALUE, field="P250", value=v[250], allowed="1 with P243 = 1 or 2")
+            for n in (245, 246):
+                if v[n] != 0:
+                    raise CompaxError(
+                        f"P{n} = {v[n]} must be 0 in the HEDA modes master / passive slave (P243 = {v[243]}, §6)",
+                        code=E_VALUE, field=f"P{n}", value=v[n], allowed="0 with P243 = 1 or 2")
+
+    @staticmethod
+    def _check_vc_rules(v: Mapping[int, Any]) -> None:
+        if v[80] == 32:  # roller feed (§4.3)
+            if not 30 <= v[83] <= 3000:
+                raise CompaxError(f"P83 = {v[83]} out of range for the roller feed (P80 = 32): allowed 30 ... 3000 mm",
+                                  code=E_VALUE, field="P83", value=v[83], allowed="30 ... 3000 mm")
+            if v[83] / v[85] > 300:
+                raise CompaxError(
+                    f"roller feed restriction P83/P85 <= 300 mm violated: P83 = {v[83]}, P85 = {v[85]} "
+                    f"(P83/P85 = {v[83] / v[85]:.3f} mm, §4.3)",
+                    code=E_VALUE, field="P83/P85", value=v[83] / v[85], allowed="<= 300 mm")
+        if v[80] == 16 and v[90] == 0:  # universal drive in increments (§4.2.2)
+            p83 = v[83]
+            if not (p83 == int(p83) and int(p83) in {1 << n for n in range(4, 17)}):
+                raise CompaxError(
+                    f"P83 = {p83} not allowed for the unit 'Increments' (P90 = 0, P80 = 16): "
+                    "P83 must be 2^n with n = 4 ... 16 (16 ... 65536)",
+                    code=E_VALUE, field="P83", value=p83, allowed="2^n, n = 4 ... 16")
+
+    def __repr__(self) -> str:
+        pending = self.pending()
+        return f"Parameters({len(PARAMETERS)} parameters, pending={pending})"
+
+
+# ---------------------------------------------------------------------------------------
+# value-range rules and helpers
+
+
+def _positive(name: str, value: float) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise CompaxError(f"{name} = {value!r} must be a finite number > 0", code=E_VALUE, field=name, value=value,
+                          allowed="> 0")
+    return value
+
+
+def scaled_master_cycle(master_cycle: float, p143: float, p98: float) -> float:
+    """M_T* = M_T · 4 · P143 / P98: the master cycle in encoder increments (§4.5.3, §24)."""
+    _positive("P98", p98)
+    return float(Fraction(master_cycle) * 4 * Fraction(p143) / Fraction(p98))
+
+
+def check_master_cycle_range(master_cycle: float, p143: float, p98: float) -> float:
+    """The scaled master cycle, or CompaxError if M_T·4·P143/P98 > 4 000 000 (§4.5.3)."""
+    _positive("M_T", master_cycle)
+    scaled = scaled_master_cycle(master_cycle, p143, p98)
+    if scaled > MAX_SCALED_CYCLE:
+        raise CompaxError(
+            f"scaled master cycle M_T·4·P143/P98 = {scaled:.3f} exceeds 4 000 000 increments "
+            f"(M_T = {master_cycle}, P143 = {p143}, P98 = {p98}; §4.5.3)",
+            code=E_VALUE, field="M_T·4·P143/P98", value=scaled, allowed="<= 4 000 000")
+    return scaled
+
+
+def scaled_slave_cycle(slave_cycle: float, p83: float, p90: int) -> float | None:
+    """S_T* in increments: S_T·2^16/P83 (P90 = 0) or S_T·2^16/(P83·0.001) (P90 = 1 or 3).
+
+    None for P90 = 2 (inch): the manual gives no rule (decision 1: the formulas' "P93" is P90).
+    """
+    _positive("P83", p83)
+    if p90 == 0:
+        return float(abs(Fraction(slave_cycle)) * 2**16 / Fraction(p83))
+    if p90 in (1, 3):
+        return float(abs(Fraction(slave_cycle)) * 2**16 / (Fraction(p83) * Fraction(1, 1000)))
+    if p90 == 2:
+        return None
+    raise CompaxError(f"P90 = {p90!r} out of range; allowed is one of 0, 1, 2, 3", code=E_VALUE, field="P90",
+                      value=p90, allowed="0, 1, 2, 3")
+
+
+def check_slave_cycle_range(slave_cycle: float, p83: float, p90: int) -> float | None:
+    """S_T*, or CompaxError if it exceeds 4 000 000 (§4.5.3)."""
+    scaled = scaled_slave_cycle(slave_cycle, p83, p90)
+    if scaled is not None and scaled > MAX_SCALED_CYCLE:
+        formula = "S_T·2^16/P83" if p90 == 0 else "S_T·2^16/(P83·0.001)"
+        raise CompaxError(
+            f"scaled slave cycle {formula} = {scaled:.3f} exceeds 4 000 000 (S_T = {slave_cycle}, P83 = {p83}, "
+            f"P90 = {p90}; §4.5.3)",
+            code=E_VALUE, field=formula, value=scaled, allowed="<= 4 000 000")
+    return scaled
+
+
+def drift_free_problems(
+    *,
+    master_cycle: float,
+    slave_cycle: float,
+    p143: float,
+    p98: float,
+    p83: float,
+    p90: int,
+    p80: int = 16,
+    p35: float = 1.0,
+    p21: float = 1.0,
+    open_curve: bool = True,
+) -> list[str]:
+    """The conditions of §24 (Annex 1) a configuration breaks; [] means drift-free.
+
+    Pass exact values (ints or Fractions, or decimal strings via Fraction) - the
+    conditions are about whole numbers. Closed curves need no slave condition (§24:
+    "Closed curves are always drift-free"). See decision 6 for P36 and "P83 = P93".
+    """
+    problems: list[str] = []
+    if p80 != 16:
+        problems.append(f"P80 = {p80}: drift-free operation needs the universal drive (P80 = 16)")
+    if p90 == 2:
+        problems.append("P90 = 2 (inch): drift-free operation needs increments, mm or degree")
+    if Fraction(p35) != 1:
+        problems.append(f"P35 = {p35}: the 1st condition requires P35 = 1")
+    if Fraction(p21) != 1:
+        problems.append(f"P21 = {p21}: the slave channel requires P21 = 1")
+    m_star = Fraction(master_cycle) * 4 * Fraction(p143) / Fraction(p98)
+    if m_star.denominator != 1 or m_star > MAX_SCALED_CYCLE:
+        problems.append(f"1st condition: M_T* = M_T·4·P143/P98 = {float(m_star)} must be a whole number <= 4 000 000")
+    if open_curve and p90 in (0, 1, 3):
+        if p90 == 0:
+            s_star = abs(Fraction(slave_cycle)) * 2**16 / Fraction(p83)
+        else:
+            s_star = abs(Fraction(slave_cycle)) * 2**16 / (Fraction(p83) / 1000)
+        if s_star.denominator != 1 or s_star > MAX_SCALED_CYCLE:
+            problems.append(f"2nd condition: S_T* = {float(s_star)} must be a whole number <= 4 000 000")
+        if p90 == 0:
+            p83_int = Fraction(p83)
+            if p83_int.denominator != 1 or p83_int <= 0 or int(p83_int) & (int(p83_int) - 1):
+                problems.append(f"3rd condition: P83 = {p83} must be 2^a at 'Increments'")
+        else:
+            ratio = Fraction(p83) / (1000 * abs(Fraction(slave_cycle)))
+            if ratio <= 0 or not _is_power_of_two(ratio):
+                problems.append(f"3rd condition: P83 = {p83} must be 1000·S_T·2^b at 'mm' or 'Degree'")
+    return problems
+
+
+def _is_power_of_two(x: Fraction) -> bool:
+    n, d = x.numerator, x.denominator
+    return n > 0 and (n & (n - 1)) == 0 and (d & (d - 1)) == 0 and (n == 1 or d == 1)
+
+
+def max_travel_revolutions(p83: int) -> int:
+    """Max. travel in motor revolutions at the unit 'Increments': floor(4 000 000 / P83) (§4.2.2)."""
+    if isinstance(p83, bool) or not isinstance(p83, int) or p83 <= 0:
+        raise CompaxError(f"P83 = {p83!r} must be a positive integer", code=E_VALUE, field="P83", value=p83)
+    return 4_000_000 // p83
+
+
+def p35_ramp_error_percent(p179: float) -> float:
+    """Upper bound of the P35 ramp time error: F < 100 % · 2^-23 · P179 (§18)."""
+    return 100.0 * float(p179) / 2**23
+
+
+def aux_mask(*outputs: str) -> int:
+    """P37 / P38 value for the given outputs, e.g. aux_mask("O7", "O14") = 8256 (§13.1)."""
+    total = 0
+    for name in outputs:
+        if name not in AUX_VALENCES:
+            raise CompaxError(f"output {name!r} is no digital auxiliary function; allowed: O7 ... O14",
+                              code=E_VALUE, field="output", value=name, allowed="O7 ... O14")
+        total |= AUX_VALENCES[name]
+    return total
+
+
+def check_label_sensor_distance(p32: float, cycle: float) -> None:
+    """P32 must lie in 0 ... 10 · the allocated cycle (M_T or S_T) (§23)."""
+    limit = 10 * abs(float(cycle))
+    if not (math.isfinite(float(p32)) and 0 <= float(p32) <= limit):
+        raise CompaxError(f"P32 = {p32!r} out of range; allowed is 0 ... 10 · cycle = {limit}",
+                          code=E_VALUE, field="P32", value=p32, allowed=f"0 ... {limit}")
