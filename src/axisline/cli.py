@@ -281,7 +281,8 @@ def _start_servers(m, wanted: dict, serial_pty: bool) -> list:
         from .fieldbus.modbus import ModbusServer
 
         host, port = wanted["modbus"]
-        srv = ModbusServer(m.device.register_endpoint(), m.commands, host, port).start()
+        dev = m.device
+        srv = ModbusServer(dev.register_endpoint(), m.commands, host, port, writes_allowed=lambda: dev.network_writes).start()
         servers.append(srv)
         print(f"modbus {srv.address[0]}:{srv.address[1]}", flush=True)
     return servers
