@@ -92,3 +92,8 @@ class Personality(ABC):
 
     def summary(self) -> dict[str, Any]:
         return {}
+
+
+register("wago672", "axisline.devices.wago672.personality:Wago672Personality")
+register("compax", "axisline.devices.compax.personality:CompaxPersonality")
+register("fs701", "axisline.devices.fs701.personality:Fs701Personality")
