@@ -65,7 +65,7 @@ _FOUR_PI = 4.0 * math.pi
 # --------------------------------------------------------------------------------------
 
 
-class _PolyPiece:
+class PolyPiece:
     """s(t) = sum c[k] t^k on [u0, u1]."""
 
     __slots__ = ("u0", "u1", "c", "dc", "ddc", "dddc")
@@ -97,8 +97,8 @@ class _PolyPiece:
         # constant polynomials give scalars; broadcast so callers always get arrays
         return tuple(np.broadcast_to(np.asarray(x, dtype=float), t.shape) for x in (s, v, a, j))
 
-    def scaled(self, k: float) -> "_PolyPiece":
-        return _PolyPiece(self.u0, self.u1, [k * x for x in self.c])
+    def scaled(self, k: float) -> "PolyPiece":
+        return PolyPiece(self.u0, self.u1, [k * x for x in self.c])
 
 
 class _TrigPiece:
@@ -144,7 +144,7 @@ class _TrigPiece:
                           k * self.s0, k * self.v0)
 
 
-_Piece = Union[_PolyPiece, _TrigPiece]
+_Piece = Union[PolyPiece, _TrigPiece]
 
 
 def _chain_trig(shapes: Sequence[tuple[float, float, float, float, float, float]],
@@ -275,7 +275,7 @@ class MotionLaw:
 def _constant_velocity() -> MotionLaw:
     return MotionLaw(
         "constant_velocity",
-        [_PolyPiece(0.0, 1.0, [0.0, 1.0])],
+        [PolyPiece(0.0, 1.0, [0.0, 1.0])],
         notes=(
             "s = u. Joined to dwells the velocity steps 0 -> 1 at u = 0 and 1 -> 0 at u = 1, "
             "so the acceleration has (infinite) impulses at the ends; ca = cj = 0 are the "
@@ -352,7 +352,7 @@ def _modified_trapezoid() -> MotionLaw:
 def _poly345() -> MotionLaw:
     return MotionLaw(
         "poly345",
-        [_PolyPiece(0.0, 1.0, [0.0, 0.0, 0.0, 10.0, -15.0, 6.0])],
+        [PolyPiece(0.0, 1.0, [0.0, 0.0, 0.0, 10.0, -15.0, 6.0])],
         notes="s = 10u^3 - 15u^4 + 6u^5. C2 with rest at both ends; jerk steps (60) at the ends.",
     )
 
@@ -360,7 +360,7 @@ def _poly345() -> MotionLaw:
 def _poly4567() -> MotionLaw:
     return MotionLaw(
         "poly4567",
-        [_PolyPiece(0.0, 1.0, [0.0, 0.0, 0.0, 0.0, 35.0, -84.0, 70.0, -20.0])],
+        [PolyPiece(0.0, 1.0, [0.0, 0.0, 0.0, 0.0, 35.0, -84.0, 70.0, -20.0])],
         notes="s = 35u^4 - 84u^5 + 70u^6 - 20u^7. C3: jerk is zero at both ends.",
     )
 
@@ -397,7 +397,7 @@ def evaluate(name: str, u: ArrayLike) -> Quad:
 # general VDI 2143 segment types
 # --------------------------------------------------------------------------------------
 
-_DWELL = MotionLaw("dwell", [_PolyPiece(0.0, 1.0, [0.0])], notes="s = 0: the slave rests.")
+_DWELL = MotionLaw("dwell", [PolyPiece(0.0, 1.0, [0.0])], notes="s = 0: the slave rests.")
 
 
 def dwell() -> MotionLaw:
@@ -422,8 +422,8 @@ def return_(law_name: str) -> MotionLaw:
         for p in base._pieces:
             # negate everything, then add 1 to each piece's constant term (its value at t = 0)
             neg = p.scaled(-1.0)
-            if isinstance(neg, _PolyPiece):
-                pieces.append(_PolyPiece(neg.u0, neg.u1, [neg.c[0] + 1.0, *neg.c[1:]]))
+            if isinstance(neg, PolyPiece):
+                pieces.append(PolyPiece(neg.u0, neg.u1, [neg.c[0] + 1.0, *neg.c[1:]]))
             else:
                 pieces.append(_TrigPiece(neg.u0, neg.u1, neg.p, neg.q, neg.r, neg.w, neg.s0 + 1.0, neg.v0))
         law = MotionLaw(f"return_{law_name}", pieces, notes=f"1 - {law_name}. " + base.notes)
@@ -462,6 +462,6 @@ def transition(v0: float, a0: float, v1: float, a1: float) -> MotionLaw:
             raise ValueError(f"transition: {field} = {val!r} must be a finite number")
     return MotionLaw(
         f"transition(v0={v0:g}, a0={a0:g}, v1={v1:g}, a1={a1:g})",
-        [_PolyPiece(0.0, 1.0, quintic_coefficients(1.0, v0, a0, v1, a1))],
+        [PolyPiece(0.0, 1.0, quintic_coefficients(1.0, v0, a0, v1, a1))],
         notes="5th-order polynomial meeting s, v, a at both ends (VDI 2143 general transition).",
     )

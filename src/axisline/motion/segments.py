@@ -48,7 +48,7 @@ from typing import Any, Callable, Union
 import numpy as np
 
 from axisline.motion.curve import CamCurve
-from axisline.motion.laws import LAW_NAMES, LAWS, _PolyPiece, dwell, quintic_coefficients
+from axisline.motion.laws import LAW_NAMES, LAWS, PolyPiece, dwell, quintic_coefficients
 
 __all__ = ["Segment", "SegmentCam", "segments_from_table", "SEGMENT_LAWS"]
 
@@ -198,7 +198,7 @@ class SegmentCam(CamCurve):
                 V0, A0, V1, A1 = auto_bc[i]
                 # slave-unit polynomial in u: the stroke may be 0 (a transition between equal
                 # levels), so it is not normalised by h
-                piece = _PolyPiece(0.0, 1.0, quintic_coefficients(h, V0 * L, A0 * L * L, V1 * L, A1 * L * L))
+                piece = PolyPiece(0.0, 1.0, quintic_coefficients(h, V0 * L, A0 * L * L, V1 * L, A1 * L * L))
                 scale = 1.0
                 self._fs.append(piece.at)
                 self._fa.append(piece.at_array)
