@@ -435,10 +435,14 @@ class Machine:
         return RunResult(n, n * self.period, time.perf_counter() - t0, completed and not self.faults and not self.job.failed, list(self.faults))
 
     def stop_all(self, max_seconds: float = 30.0) -> bool:
-        """Stop every moving axis with its stop ramp; True when all came to rest."""
-        for u in self.units.values():
-            if u.axis.state not in _IDLE:
-                u.axis.stop()
+        """Stop every moving axis with its stop ramp; True when all came to rest.
+
+        A personality that drives its axes itself stops them with its own ramps (its stop()),
+        so it stays consistent with them; otherwise the axes get a stop command."""
+        if self.device is None or not self.device.stop():
+            for u in self.units.values():
+                if u.axis.state not in _IDLE:
+                    u.axis.stop()
         ok = self.scheduler.run_until(self.at_rest_after_stop, max(1, round(max_seconds / self.period)))
         for u in self.units.values():
             if u.axis.state is AxisState.STOPPING:

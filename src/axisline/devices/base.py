@@ -86,6 +86,14 @@ class Personality(ABC):
     def register_endpoint(self) -> RegisterEndpoint:
         raise NotImplementedError(f"{self.name} offers no register image")
 
+    def stop(self) -> bool:
+        """Shutdown (Ctrl-C, SIGTERM): stop the device's motion with its own stop ramps.
+
+        Return True if the device takes care of it (the machine then runs cycles until the
+        axes are at rest), False to let the machine stop the axes directly.
+        """
+        return False
+
     def persist(self) -> list[Path]:
         """Save what must survive a restart (atomically); returns the files written."""
         return []
