@@ -9,9 +9,14 @@ Stop1_N follows Input1). A target may point at another target, at most four leve
 
 This is the seam for bit linking: `BitTable` resolves the FACTORY_DEFAULT links and any
 relinking in the configuration, keeps the values of bits linked to MZERO/MONE (writable by
-mailbox and run program, WR_BIT) and of the user bits. Still to come (second engineer): the
-eight filters/timers/counters FILT1..8 (`filter_output` hook; until then a filter passes its
-input through, the function "0 no filtering"), their variables, the data recorder trigger.
+mailbox and run program, WR_BIT) and of the user bits. The eight filters/timers/counters
+FILT1..8 are filters.py (`filter_output` hook, installed by `FilterBank`; without it a filter
+passes its input through, the function "0 no filtering"); `filter_input(n)` reads a filter's
+input. With `on_error` set (mailbox.attach sets the device's raise_error) a chain deeper than
+four levels reads 0 and reports 1245 instead of raising, so the status bytes, OUT1/OUT2 and the
+LEDs can be read with any linking. A FILT bit linked to MZERO/MONE keeps the written value as the filter's input.
+WR_BIT on a source bit (0..127) or on a bit without a pointer (224..255) is 1243
+IO_USERBIT_READONLY, on a target not linked to MZERO/MONE 1242 IO_ILLEGAL_USERBITNR.
 
 Bit numbers are the manual's names as constants of `Bit` (e.g. `Bit.Stop_N_ACK == 0x11`).
 """
@@ -155,6 +160,8 @@ class BitTable:
         self._src[Bit.MONE] = 1
         self._marker = bytearray(256)  # values of targets linked to MZERO / MONE
         self.filter_output: Callable[[int, bool], bool] = lambda n, value: value
+        # set by mailbox.attach: report 1245 and read 0 instead of raising (every reader of a bit)
+        self.on_error: Callable[[int, str], None] | None = None
         self._ptr: list[int] = []  # pointers of targets 128..223, refreshed when the config changes
         self._generation = -1
         self.reset()
@@ -201,19 +208,33 @@ class BitTable:
         if n >= 224:
             return False  # no pointer (unused or internal bits)
         ptr = self._pointers()[n - 128]
+        if 168 <= n <= 175:  # FILTn: the pointer selects the filter input, reading gives the output
+            return bool(self.filter_output(n - 167, self._filter_input(n, ptr, depth)))
         if ptr in (Bit.MZERO, Bit.MONE):
             return bool(self._marker[n])
-        if 168 <= n <= 175:  # FILTn: the pointer selects the filter input, reading gives the output
-            value = self._resolve(ptr, depth + 1) if depth < MAX_NESTING else self._too_deep(n)
-            return bool(self.filter_output(n - 167, value))
         if ptr >= 128:
             if depth + 1 >= MAX_NESTING or ptr == n:
                 return self._too_deep(n)
             return self._resolve(ptr, depth + 1)
         return bool(self._src[ptr])
 
+    def _filter_input(self, n: int, ptr: int, depth: int) -> bool:
+        if ptr in (Bit.MZERO, Bit.MONE):
+            return bool(self._marker[n])  # written by WR_BIT: the filter's input
+        return self._resolve(ptr, depth + 1) if depth < MAX_NESTING else self._too_deep(n)
+
+    def filter_input(self, n: int) -> bool:
+        """The input of FILTn (n = 1..8): the bit Ptr_FILTn points at."""
+        bit = 167 + n
+        return self._filter_input(bit, self._pointers()[bit - 128], 0)
+
     def _too_deep(self, n: int) -> bool:
-        raise WagoError(1245, f"bit {n:#04x}: the chain of linked bits is deeper than {MAX_NESTING} levels")
+        text = f"bit {n:#04x}: the chain of linked bits is deeper than {MAX_NESTING} levels"
+        if self.on_error is not None:
+            # "Too many nesting levels will yield an ambiguous result and the error ... will be issued"
+            self.on_error(1245, text)
+            return False
+        raise WagoError(1245, text)
 
     def byte(self, first: int) -> int:
         """Eight bits first .. first+7 as one byte (KBUS_ST1_0.. -> S1, ...)."""
@@ -228,9 +249,12 @@ class BitTable:
         return 128 <= n < 224 and self.config.get(n) in (Bit.MZERO, Bit.MONE)
 
     def write(self, n: int, value: bool) -> None:
-        """Set a target bit that is linked to MZERO or MONE (else 1242; n > 255: 1241)."""
+        """Set a target bit that is linked to MZERO or MONE (else 1242; a source bit or a bit
+        without pointer: 1243; n > 255: 1241)."""
         if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n <= 255:
             raise WagoError(1241, f"bit number {n!r} is outside 0 .. 255")
+        if n < 128 or n >= 224:
+            raise WagoError(1243, f"bit {n:#04x} is {'a source bit' if n < 128 else 'an internal bit'} and cannot be written")
         if not self.writable(n):
             raise WagoError(1242, f"bit {n:#04x} is not linked to MZERO or MONE and cannot be set")
         self._marker[n] = 1 if value else 0

@@ -39,6 +39,10 @@ Seams for the second engineer (mailbox, tables, run programs, camshaft, bit link
 * `bits` (BitTable): the bit field, updated each tick; `config` (ConfigTable).
 * `state_variable(n)`: DIAG_RD_VAR; `errors`: the error memory (DIAG_RD_ERROR/DIAG_QUIT_ERROR
   -> `quit_errors()`); `warm_start()`.
+* `tick_hooks` (called each tick after the source bits are written), `extra_variables` (more
+  state variables), `stopping`, and a program with `autostarted` set runs in Idle mode
+  (Program_Autostart). `mailbox.attach(dev)` plugs all of these in (mailbox.py, tables.py,
+  program.py, filters.py, recorder.py).
 
 Decisions ([AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points of wago.md; the manual wins):
 * D1 Speed control selection (wago.md §3.3 [CONFLICT/AMBIGUOUS]): the manual selects it with
@@ -311,6 +315,10 @@ class Wago672:
         self.cam_pattern: Callable[[float], int] | None = None
         self.eeprom_writing = False  # set by the table manager: LED A flashes at 10 Hz
         self.on_warm_start: Callable[[Wago672], None] | None = None  # table manager: reload EEPROM data
+        # second engineer's parts (mailbox.attach): called each tick after the source bits are
+        # written (filters, data recorder, autostart, EEPROM jobs), and extra state variables
+        self.tick_hooks: list[Callable[[int], None]] = []
+        self.extra_variables: dict[int, Callable[[], int]] = {}
         self.stepping_timeout_ms = 0  # SteppingMode (D4): 0 = JogMode without time limit
         self.reference_on_target = True  # D5: On_Target after a PI reference run
         # simulated environment of the output stage (D22): temperature [degC], DC link [V]
@@ -523,6 +531,9 @@ class Wago672:
 
     def state_variable(self, index: int) -> int:
         """Internal state variable `index` (DIAG_RD_VAR, manual §4.7; 0x1000 + n: bit n)."""
+        extra = self.extra_variables.get(index)
+        if extra is not None:
+            return int(extra())
         if 0x1000 <= index <= 0x10FF:
             return int(self.bits.read(index - 0x1000))
         pos, vel = self._reported()
@@ -643,7 +654,7 @@ class Wago672:
             self._ref.step(s["set_reference"], s["ls_pos"], s["ls_neg"])
         if self.mode == MODE_JOG and not self._mode_exit and self._stage_on and stop_ok:
             self._jog_step(s, cycle)
-        if self.program is not None and self.mode == MODE_PROGRAM and self._ready:
+        if self.program is not None and (self.mode == MODE_PROGRAM or self._autostarted()) and self._ready:
             self.program.tick(cycle, self)
         self._mbx_on = bool(out.c0 & C0.MBX)
         if self._mbx_on:
@@ -663,6 +674,8 @@ class Wago672:
         self._current_and_brake(cycle)
         # ---- 12 sources out, axis sync, status bytes
         self._write_sources(s, cycle)
+        for hook in self.tick_hooks:
+            hook(cycle)
         self._sync_axis(cycle)
         self._status = (self._s0(s), b.byte(Bit.KBUS_ST1_0), b.byte(Bit.KBUS_ST2_0), b.byte(Bit.KBUS_ST3_0))
         self._outputs = (b.read(Bit.OUT1), b.read(Bit.OUT2))
@@ -1586,7 +1599,7 @@ class Wago672:
         needed = MODE_MAILBOX if source == "mailbox" else MODE_PROGRAM
         if source not in ("mailbox", "program"):
             raise ValueError(f"source must be 'mailbox' or 'program', got {source!r}")
-        if self.mode != needed or self._mode_exit or not self._ready:
+        if (self.mode != needed and not (source == "program" and self._autostarted())) or self._mode_exit or not self._ready:
             return RC.ACCESS_DENIED
         handler = _COMMANDS.get(opcode)
         if handler is None:
@@ -1598,6 +1611,15 @@ class Wago672:
         except WagoError as e:
             self._raise(e.code, e.text)
             return RC.GENERAL_ERROR
+
+    def _autostarted(self) -> bool:
+        """A run program started by Program_Autostart runs while no mode is selected (program.py)."""
+        return self.mode == MODE_IDLE and bool(getattr(self.program, "autostarted", False))
+
+    @property
+    def stopping(self) -> bool:
+        """A STOP ramp brakes the drive (Stop1_N/Stop2_N, limit switch, mode exit, STOP_FAST)."""
+        return self._stopping
 
     def _busy_process(self) -> bool:
         return self.busy or self._pending is not None
