@@ -172,4 +172,7 @@ def test_switch_state_always_agrees_with_its_edges_and_position(speeds, accel, d
         p = line.position
         if hysteresis == 0.0:
             assert state == (0.003 <= p < 0.007)
-        assert covered == any(0.01 * k - 0.05 <= p < 0.01 * k - 0.047 for k in range(100))
+        # (a position exactly on a mark edge is decided by rounding: check only clear cases)
+        bounds = [b for k in range(100) for b in (0.01 * k - 0.05, 0.01 * k - 0.047)]
+        if min(abs(p - b) for b in bounds) > 1e-12:
+            assert covered == any(0.01 * k - 0.05 <= p < 0.01 * k - 0.047 for k in range(100))
