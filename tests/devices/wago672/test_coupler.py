@@ -256,3 +256,18 @@ def test_network_writes_follow_the_operators_enable():
     assert bare.network_writes is False
     bare.network_writes = True
     assert bare.network_writes is True
+
+
+def test_shutdown_stop_brakes_moving_modules_with_their_stop_ramp():
+    # serve stopped (Ctrl-C, SIGTERM): the personality's stop() brakes each module as a
+    # watchdog expiry does, so the module's own set point stays the axis' set point
+    bus = Bus(watchdog_ms=10_000)
+    image = bus.enable_and_start(0, 8_000_000, velocity=20000)
+    bus.until(lambda: bus.inputs().s2 & S2.On_Speed, feed=(0, image))
+    k = len(bus.velocities[0])
+    bus.coupler.stop_modules()
+    bus.until(lambda: bus.axes[0].command_velocity == 0.0, limit=1000)
+    v = bus.velocities[0][k - 1 :]
+    decel = [(a - b) / 0.001 for a, b in zip(v, v[1:]) if a > 0.0]
+    assert max(decel) == pytest.approx(STOP_FAST, rel=0.02)  # its stop ramp, not a coast
+    assert bus.coupler.summary()["watchdog_expiries"] == 0  # a shutdown, not a watchdog event

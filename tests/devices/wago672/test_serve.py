@@ -97,3 +97,4 @@ def test_serve_offers_only_modbus(endpoint):
         capture_output=True, text=True, timeout=30,
     )
     assert res.returncode == 2 and endpoint in res.stderr + res.stdout
+

@@ -283,6 +283,13 @@ class Coupler:
             self._out[n][:] = bytes(IMAGE_SIZE)
             self._failsafe[n] = _STOPPING
 
+    def stop_modules(self) -> None:
+        """Shutdown of the simulation (serve stopped): every module brakes as on a watchdog expiry."""
+        for n in range(len(self.modules)):
+            self._out[n][:] = bytes(IMAGE_SIZE)
+            if self._failsafe[n] == 0:
+                self._failsafe[n] = _STOPPING
+
     @staticmethod
     def _stop_image(last: bytes) -> bytes:
         """Fail-safe step 1: only Enable as the module last had it (W1)."""

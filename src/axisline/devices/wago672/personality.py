@@ -216,6 +216,12 @@ class Wago672Personality(Personality):
         """The Wago672 of module `module` (K-bus order)."""
         return self.modules[module].device
 
+    def stop(self) -> bool:
+        """Shutdown: the modules brake with their own stop ramp (Acceleration_Stop_Fast), as on a
+        watchdog expiry, so each module's set point stays the axis' set point."""
+        self.coupler.stop_modules()
+        return True
+
     def persist(self) -> list[Path]:
         """Complete the EEPROM writes still pending; returns the EEPROM image files."""
         files: list[Path] = []
