@@ -1,0 +1,757 @@
+"""The Parker COMPAX XX70 cam controller as a machine personality (docs/compax.md).
+
+    [machine]
+    cycle_us = 1000                    # COMPAX works in 1 ms cycles (I14 polled every 100 µs)
+    personality = "compax"
+
+    [device]
+    slave = "knife"                    # the machine axis COMPAX drives (its power stage: I12)
+    master = "wheel"                   # a [[master]] (wheel, axis_encoder, ...), an axis with an
+                                       # encoder, or "internal" (the internal time base, P30 = 1)
+    memory_file = "knife.cam.json"     # the cam memory: loaded at start if present, saved by persist()
+    parameters = { P33 = 1, P32 = 450.0, P180 = 10 }          # written, then VC and VP
+    inputs = { I13 = true, I14 = "labels", I16 = true }       # I12 ... I16 wiring
+    outputs = { O16 = "knife_sync" }                          # O1 ... O16 to [io] outputs
+    startup = ["SETC 1", "SETM 0", "LOOP 0"]                  # run at start, like a COMPAX program
+
+    [[device.curves]]                  # written into a new cam memory (not when the file exists)
+    number = 1
+    master_period = 300.0              # from motion laws (SegmentCam), a [[cam]] or a CSV file
+    segments = [ { master_end = 30.0, slave_end = 43.2, law = "constant_velocity" }, ... ]
+    points = 301
+    label_set_point = 0.25             # curve parameters: fractions of M_T (S_T)
+    label_window = 0.1
+
+What happens each 1 ms cycle (`tick`, LOGIC stage, before the slave samples its set point):
+the start-up program advances (a line waits while the slave is positioning, while a LOOP is
+active unless P210 = 1, and a LOOP / POSR CAM waits for the power stage), the label sensor's
+sub-cycle edges of the last plant step go to the label synchronisation (I14 wired to a
+print-mark sensor or switch; an io input or a constant is read as a level), I16 wired to a
+sensor latches the master encoder at its rising edge (interpolated in the cycle), the cam
+operation runs (`camop.CamOperation.tick`), and O1 ... O16 are written to the io outputs
+wired to them. A `report.CycleLog` keeps one record per master cycle (label error before /
+after correction, correction, tracking error, O15 / O16 changes): `summary()["cycles"]`,
+and `write_report(dir)` writes them as JSON with a plot.
+
+The slave belongs to COMPAX: job steps must not command it; its power follows I12 (wired
+to true unless given). The master encoder's scaling P98 / P143 is derived from the master
+(`derive_master_scaling`) unless device.parameters sets them.
+
+The ASCII interface (`byte_endpoint`, `axisline serve --serial-tcp / --serial-pty`) is
+`ascii.AsciiEndpoint` on this device's cam memory, parameters, cam operation and live status
+values. Reads (F/I/B<address>, P<n>, S<n>) are always answered; every write (memory,
+parameters, VF, VP, RESETF, SETC, LOOP, ...) is refused with the device's error reply
+(``!E104`` for memory and parameters, ``!E107`` for commands) unless the operator enabled
+network writes (``serve --allow-writes``); a refused or wrong line changes nothing.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+from typing import Annotated, Any, Callable, Literal
+
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, field_validator, model_validator
+
+from axisline.configerrors import ConfigError
+from axisline.devices.base import Personality
+from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, CompaxError
+from axisline.devices.compax.ascii import MAX_LINE, AsciiEndpoint
+from axisline.devices.compax.cammemory import MAX_CURVES, MAX_POINTS_PER_CURVE, CamMemory
+from axisline.devices.compax.camop import CamOperation, CamState
+from axisline.devices.compax.curves import (
+    CurveRecord,
+    curve_from_cam,
+    curve_from_table,
+    curve_to_csv,
+    read_curve,
+    write_curve,
+)
+from axisline.devices.compax.label import LabelSync
+from axisline.devices.compax.masterchain import param
+from axisline.devices.compax.parameters import PARAMETERS, Parameters
+from axisline.devices.compax.report import CycleLog, converged_after, write_report
+from axisline.devices.compax.status import StatusValues, format_status
+from axisline.kernel import atomic_write_text
+from axisline.motion.axis import AxisState
+
+__all__ = [
+    "CompaxConfig",
+    "CompaxEndpoint",
+    "CompaxPersonality",
+    "CurveEntry",
+    "derive_master_scaling",
+    "load_parameters",
+    "save_parameters",
+]
+
+Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
+Name = Annotated[str, StringConstraints(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
+InputName = Literal["I12", "I13", "I14", "I15", "I16"]
+OutputName = Literal["O1", "O2", "O3", "O4", "O5", "O6", "O7", "O8", "O9", "O10", "O11", "O12", "O13", "O14", "O15", "O16"]
+
+_STATUS_NUMBERS = (1, 2, 13, 14, 30, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51, 52)
+_STATE_CODE = {s: i for i, s in enumerate(CamState)}
+_MOVING = (AxisState.DISCRETE_MOTION, AxisState.CONTINUOUS_MOTION, AxisState.HOMING, AxisState.STOPPING)
+_PARAM_FILE_FORMAT = "axisline-compax-parameters"
+
+# lines of the start-up program (spaces removed, upper case): the ASCII interface's and WAIT ms
+_PROGRAM_LINES = tuple(
+    re.compile(p)
+    for p in (
+        r"[IFB]\d+(=.+)?",
+        r"P\d+(=.+)?",
+        r"S\d+",
+        r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR",
+        r"(SETC|SC|SETM|SM|LOOP|LP).+",
+        r"WAIT\d+(\.\d*)?",
+    )
+)
+_MOTION = re.compile(r"LOOP|LP|POSRCAM|PR")
+# writes of the ASCII interface (refused from the network unless writes are enabled)
+_DATA_WRITE = re.compile(r"[IFB]\d+=.*|P\d+=.*")
+_COMMAND = re.compile(r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR|(SETC|SC|SETM|SM|LOOP|LP).+")
+_STATUS_READ = re.compile(r"S(\d+)")
+
+
+# ---------------------------------------------------------------------------------------
+# configuration
+
+
+def _program_line(line: str) -> str:
+    key = "".join(line.split()).upper()
+    if not any(p.fullmatch(key) for p in _PROGRAM_LINES):
+        raise ValueError(
+            "not a line of the ASCII interface (SETC n, SETM x, SETS, POSR CAM, LOOP m, F/I/B<address>=value, "
+            "P<n>=value, VP, VC, VF, RESETF, RESETP) or WAIT ms"
+        )
+    return line
+
+
+ProgramLine = Annotated[str, StringConstraints(min_length=1, max_length=MAX_LINE), AfterValidator(_program_line)]
+
+
+class CurveEntry(BaseModel):
+    """One curve written into a new cam memory: from a CSV file, motion-law segments or a [[cam]]."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    number: int = Field(ge=1, le=MAX_CURVES, description="curve number n (SETC n); curves are numbered 1, 2, ... without gaps")
+    csv: str | None = Field(
+        None, min_length=1, max_length=4096,
+        description="a master,slave CSV (slave in units), relative to the machine file; equidistant, or give points to resample",
+    )
+    segments: list[dict[str, Any]] | None = Field(
+        None, max_length=1000, description="motion-law segments (master_end, slave_end, law) as in [[cam]]; needs master_period and points"
+    )
+    cam: Name | None = Field(None, description="the name of a [[cam]] of the machine file; needs points")
+    master_period: float | None = Field(None, gt=0.0, le=8_388_607.0, description="segments: the master cycle M_T, master units")
+    start: float = Field(0.0, ge=-1e9, le=1e9, description="segments: slave position at master 0")
+    points: int | None = Field(
+        None, ge=2, le=MAX_POINTS_PER_CURVE, description="set points to sample (equidistant over M_T); a CSV is resampled when given"
+    )
+    slave_cycle: float | None = Field(
+        None, ge=-8_388_607.0, le=8_388_607.0, description="S_T, slave units (none: the largest |slave value| of the curve)"
+    )
+    coupling: float = Field(0.0, ge=0.0, le=1.0, description="M_E, coupling position, fraction of M_T")
+    synchronous: float = Field(0.0, ge=0.0, le=1.0, description="M_S, synchronous position, fraction of M_T")
+    decoupling: float = Field(0.0, ge=0.0, le=1.0, description="M_A, decoupling position, fraction of M_T")
+    braking: float = Field(0.0, ge=0.0, le=1.0, description="M_B, braking position, fraction of M_T")
+    standstill: float = Field(0.0, ge=-1.0, le=1.0, description="S_0, standstill position, fraction of S_T")
+    label_set_point: float = Field(0.0, ge=0.0, le=1.0, description="M_M (S_M), label set point, fraction of M_T (S_T)")
+    label_window: float = Field(0.0, ge=0.0, le=0.3, description="M_f, half width of the label window, fraction of M_T (S_T)")
+    correction_enable: float = Field(0.0, ge=0.0, le=1.0, description="M_k1, corrections from this master position, fraction of M_T")
+    correction_disable: float = Field(0.0, ge=0.0, le=1.0, description="M_k2, corrections up to this master position, fraction of M_T")
+
+    @model_validator(mode="after")
+    def _source(self) -> "CurveEntry":
+        given = [k for k in ("csv", "segments", "cam") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError(f"curve {self.number}: give exactly one of csv, segments, cam (given: {', '.join(given) or 'none'})")
+        if self.segments is not None and (self.master_period is None or self.points is None):
+            raise ValueError(f"curve {self.number}: segments need master_period and points")
+        if self.cam is not None and self.points is None:
+            raise ValueError(f"curve {self.number}: cam = {self.cam!r} needs points (the set points to sample)")
+        if self.slave_cycle == 0.0:
+            raise ValueError(f"curve {self.number}: slave_cycle = 0 cannot scale the curve")
+        return self
+
+    def block(self) -> dict[str, float]:
+        names = ("coupling", "synchronous", "decoupling", "braking", "standstill", "label_set_point",
+                 "label_window", "correction_enable", "correction_disable")
+        return {n: getattr(self, n) for n in names}
+
+
+class CompaxConfig(BaseModel):
+    """The [device] table of personality "compax"."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    slave: Name = Field(description="the machine axis COMPAX drives as its slave (job steps must not command it)")
+    master: Name = Field(
+        "internal",
+        description="master encoder: a [[master]] name (wheel, axis_encoder, ...), an axis with an [axis.encoder], or internal (time base)",
+    )
+    memory_file: str | None = Field(
+        None, min_length=1, max_length=4096,
+        description="cam memory file (JSON, relative to the machine file): loaded at start if present, saved by persist(); none: not kept",
+    )
+    parameter_file: str | None = Field(
+        None, min_length=1, max_length=4096,
+        description="parameter file (JSON): loaded at start if present instead of device.parameters, saved by persist()",
+    )
+    curves: list[CurveEntry] = Field(
+        default_factory=list, max_length=MAX_CURVES, description="curves for a new cam memory (ignored when memory_file exists)"
+    )
+    parameters: dict[str, int | float] = Field(
+        default_factory=dict, description="parameter values by number (P33 = 1): written, then VC and VP"
+    )
+    inputs: dict[InputName, bool | Signal] = Field(
+        default_factory=dict,
+        description="I12...I16: true/false, a switch '<axis>.<name>', a print-mark sensor or an [io] input; I12 defaults to true, the rest to false",
+    )
+    outputs: dict[OutputName, Signal] = Field(default_factory=dict, description="O1...O16 to [io] outputs")
+    startup: list[ProgramLine] = Field(
+        default_factory=list, max_length=1000,
+        description="start-up program: ASCII-interface lines (SETC 1, SETM 0, LOOP 0, P31=2, VP, ...) and WAIT ms, run in order at start",
+    )
+    label_tolerance: float = Field(
+        10.0, gt=0.0, le=500.0, description="label error (per mille of the cycle) the report counts as converged"
+    )
+    trace: bool = Field(True, description="add the compax.* channels to the scope when it records all channels")
+
+    @field_validator("parameters")
+    @classmethod
+    def _parameters(cls, value: dict[str, int | float]) -> dict[str, int | float]:
+        probe = Parameters()
+        problems = []
+        for key, v in value.items():
+            m = re.fullmatch(r"[Pp]?(\d+)", key.strip())
+            if m is None or int(m[1]) not in PARAMETERS:
+                problems.append(f"{key} = {v!r}: not a parameter of the device (e.g. P33)")
+                continue
+            try:
+                probe[int(m[1])] = v
+            except CompaxError as e:
+                problems.append(str(e))
+        if problems:
+            raise ValueError("; ".join(problems))
+        return value
+
+    def parameter_values(self) -> dict[int, int | float]:
+        return {int(re.fullmatch(r"[Pp]?(\d+)", k.strip())[1]): v for k, v in self.parameters.items()}  # type: ignore[index]
+
+
+# ---------------------------------------------------------------------------------------
+# helpers
+
+
+def derive_master_scaling(counts_per_unit: float, *, preferred_p98: float | None = None) -> tuple[float, int] | None:
+    """(P98, P143) so that 4·P143/P98 = counts_per_unit (the master encoder's increments per
+    master unit, §4.5): the preferred P98 (a wheel's circumference) first, then round values.
+    None when no P143 of 128 ... 2 000 000 fits exactly."""
+    c = float(counts_per_unit)
+    if not (math.isfinite(c) and c > 0):
+        return None
+    candidates: list[float] = [preferred_p98] if preferred_p98 else []
+    candidates += [1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 15, 16, 18, 20, 24, 25, 30, 32, 36, 40, 45, 48, 50, 60, 64, 72,
+                   75, 80, 90, 96, 100, 120, 125, 128, 144, 150, 160, 180, 200, 240, 250, 256, 300, 360, 400, 500,
+                   512, 600, 720, 750, 1000, 1024, 2000, 2048, 3600, 4096, 5000, 10000]
+    for p98 in candidates:
+        p143 = c * p98 / 4.0
+        r = round(p143)
+        if abs(p143 - r) <= 1e-9 * max(1.0, p143) and 128 <= r <= 2_000_000 and 0 < p98 <= 4_000_000:
+            return float(p98), int(r)
+    return None
+
+
+def save_parameters(params: Parameters, path: str | Path) -> None:
+    """The written parameter values as JSON, atomically (what a restart loads)."""
+    doc = {"format": _PARAM_FILE_FORMAT, "version": 1,
+           "written": {f"P{n}": params.written[n] for n in sorted(PARAMETERS)}}
+    atomic_write_text(path, json.dumps(doc, indent=1) + "\n")
+
+
+def load_parameters(path: str | Path) -> Parameters:
+    """A parameter file as the device has it after power on: every value written and valid."""
+    name = str(path)
+    try:
+        with open(path, encoding="utf-8") as f:
+            doc = json.load(f)
+    except json.JSONDecodeError as e:
+        raise CompaxError(f"{name}: not a parameter file ({e})") from None
+    if not isinstance(doc, dict) or doc.get("format") != _PARAM_FILE_FORMAT or doc.get("version") != 1:
+        raise CompaxError(f"{name}: not a parameter file (format {_PARAM_FILE_FORMAT!r}, version 1)")
+    written = doc.get("written")
+    if not isinstance(written, dict):
+        raise CompaxError(f"{name}: 'written' must be a table of parameter values")
+    params = Parameters()
+    for key, value in written.items():
+        m = re.fullmatch(r"P(\d+)", str(key))
+        if m is None:
+            raise CompaxError(f"{name}: {key!r} is not a parameter number (P<n>)")
+        params[int(m[1])] = value
+    for event in ("VC", "VP", "SETC", "LOOP", "cycle_end"):  # power on: what was stored is valid
+        params.make_valid(event)
+    return params
+
+
+class LiveStatus(StatusValues):
+    """The status values read live from the cam operation; S30 is the last error of the
+    interface or of the cam operation (whichever came last)."""
+
+    def __init__(self, op: CamOperation) -> None:
+        super().__init__()
+        self.op = op
+
+    def __getitem__(self, number: int) -> float:
+        stored = super().__getitem__(number)  # checks the number
+        return stored if number == 30 else float(self.op.status(number))
+
+    def read(self, number: int, parameters: Any = None) -> float:
+        return self[number]
+
+
+class CompaxEndpoint(AsciiEndpoint):
+    """The ASCII interface with the operator's write enable (see the module docstring)."""
+
+    def __init__(self, memory: CamMemory, parameters: Parameters, commands: Any, status: StatusValues,
+                 writes_allowed: Callable[[], bool]) -> None:
+        super().__init__(memory, parameters, commands, status)
+        self._writes_allowed = writes_allowed
+
+    def _dispatch(self, text: str) -> str:
+        line = "".join(text.split()).upper()
+        match = _STATUS_READ.fullmatch(line)
+        if match:
+            number = int(match[1])
+            return f"S{number:03d}={format_status(self.status.read(number, self.parameters))}"
+        if not self._writes_allowed():
+            if _DATA_WRITE.fullmatch(line):
+                raise CompaxError(f"{text.strip()!r} refused: writes from the network are not enabled "
+                                  "(the operator enables them: axisline serve --allow-writes)",
+                                  code=E_RESERVED, field="line", value=text)
+            if _COMMAND.fullmatch(line):
+                raise CompaxError(f"{text.strip()!r} refused: commands from the network are not enabled "
+                                  "(the operator enables them: axisline serve --allow-writes)",
+                                  code=E_NOT_AVAILABLE, field="line", value=text)
+        return super()._dispatch(text)
+
+
+class _Label(LabelSync):
+    """LabelSync that tells the personality which labels it accepted and what it corrected."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.accepted: list[tuple[float, float]] = []
+        self.amount = 0.0  # correction applied since the personality last looked (fraction of the cycle)
+
+    def _label(self, X: float) -> None:
+        old = self.s52
+        self.s52 = math.nan  # stays NaN when the label is ignored (outside the window, a second one)
+        super()._label(X)
+        if math.isnan(self.s52):
+            self.s52 = old
+        else:
+            self.accepted.append((self.s51, self.s52))
+
+    def step(self, U: float) -> float:
+        before = self.correction.applied
+        out = super().step(U)
+        self.amount += self.correction.applied - before
+        return out
+
+
+# ---------------------------------------------------------------------------------------
+# the personality
+
+
+class CompaxPersonality(Personality):
+    """COMPAX XX70 cam controller on a machine axis (see the module docstring)."""
+
+    name = "compax"
+    Config = CompaxConfig
+    endpoints = ("serial-tcp",)
+
+    def __init__(self, machine: Any, config: CompaxConfig) -> None:
+        super().__init__(machine, config)
+        self.source = getattr(machine, "source", "") or "<machine>"
+        self.base_dir = Path(machine.source).parent if getattr(machine, "source", "") else Path.cwd()
+        self.period = float(machine.period)
+        problems: list[str] = []
+        mc = machine.config
+        if mc.machine.cycle_us != 1000:
+            problems.append(f"machine.cycle_us = {mc.machine.cycle_us}: COMPAX works in 1 ms cycles (allowed: 1000)")
+        if mc.machine.logic_every != 1:
+            problems.append(f"machine.logic_every = {mc.machine.logic_every}: COMPAX runs its cam operation every cycle (allowed: 1)")
+        unit = machine.units.get(config.slave)
+        if unit is None:
+            problems.append(f"device.slave = {config.slave!r}: no such axis (axes: {', '.join(machine.units) or 'none'})")
+        for k, step in enumerate(mc.job.steps):
+            if step.command is not None and step.axis == config.slave:
+                problems.append(f"job.steps[{k}].axis = {step.axis!r}: the axis is the COMPAX slave (device.slave); "
+                                "command it through the device (startup, ASCII interface)")
+        self.encoder, counts_per_unit, preferred_p98 = self._master(config, unit, problems)
+        signals = sorted(set(machine.sensors) | set(mc.io.inputs))
+        for name, value in config.inputs.items():
+            if isinstance(value, str) and value not in signals:
+                problems.append(f"device.inputs.{name} = {value!r}: no such switch, sensor or io input "
+                                f"(known: {', '.join(signals) or 'none'}; or true/false)")
+        for name, value in config.outputs.items():
+            if value not in mc.io.outputs:
+                problems.append(f"device.outputs.{name} = {value!r}: no such io output (outputs: {', '.join(mc.io.outputs) or 'none'})")
+        self.memory_path = self._path(config.memory_file)
+        self.parameter_path = self._path(config.parameter_file)
+        self.memory = self._memory(config, problems)
+        self.params = self._parameters(config, counts_per_unit, preferred_p98, problems)
+        if problems:
+            raise ConfigError(self.source, problems)
+        assert unit is not None and self.params is not None and self.memory is not None
+        self.unit = unit
+        self.axis = unit.axis
+        self.label = _Label()
+        wiring: dict[str, Any] = {"I12": True}
+        wiring.update({name: self._signal(value) for name, value in config.inputs.items()})
+        self.wiring = wiring
+        self.op = CamOperation(self.axis, self.params, self.memory, encoder=self.encoder, inputs=wiring, label=self.label)
+        self.status = LiveStatus(self.op)
+        self._local = CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: True)
+        self._i14 = self._sensor(config.inputs.get("I14"))
+        self._i16 = self._sensor(config.inputs.get("I16"))
+        self._edge_seen: dict[str, float] = {}
+        self._outputs = tuple((int(name[1:]), io_name) for name, io_name in config.outputs.items())
+        self.program = list(config.startup)
+        self.pc = 0  # next line of the start-up program
+        self._wait_until: int | None = None
+        self.program_errors: list[dict[str, Any]] = []
+        self.log = CycleLog()
+        self._first = True
+        self._op_error = 0
+        self._enc_prev: int | None = None
+
+    # ------------------------------------------------------------------ construction
+
+    def _path(self, name: str | None) -> Path | None:
+        if name is None:
+            return None
+        p = Path(name)
+        return p if p.is_absolute() else self.base_dir / p
+
+    def _master(self, config: CompaxConfig, slave_unit: Any, problems: list[str]) -> tuple[Any, float | None, float | None]:
+        """The master encoder (an object with integer counts), its counts per master unit and a
+        preferred P98 (a wheel's circumference)."""
+        machine = self.machine
+        name = config.master
+        if name == "internal":
+            return None, None, None
+        entries = {m.name: m for m in machine.config.master}
+        if name in machine.masters:
+            entry, master = entries[name], machine.masters[name]
+            if entry.kind == "wheel":
+                w = entry.wheel
+                return master.encoder, w.lines_per_revolution * w.multiplier / w.circumference, w.circumference
+            if entry.kind == "axis_encoder":
+                if entry.axis == config.slave:
+                    problems.append(f"device.master = {name!r}: the master cannot be the slave's own encoder")
+                return master.encoder, master.encoder.counts_per_unit, None
+            # virtual, time_base, axis: their integer position (read once per cycle, one cycle behind)
+            return master, master.counts_per_unit, None
+        unit = machine.units.get(name)
+        if unit is not None:
+            if unit.encoder is None:
+                problems.append(f"device.master = {name!r}: axis {name!r} has no [axis.encoder] to count the master")
+                return None, None, None
+            if name == config.slave:
+                problems.append(f"device.master = {name!r}: the master cannot be the slave's own encoder")
+            return unit.encoder, unit.encoder.counts_per_unit, None
+        problems.append(f"device.master = {name!r}: no such master or axis with an encoder "
+                        f"(masters: {', '.join(machine.masters) or 'none'}; axes: {', '.join(machine.units) or 'none'}; or internal)")
+        return None, None, None
+
+    def _memory(self, config: CompaxConfig, problems: list[str]) -> CamMemory | None:
+        """The cam memory: the saved file (power on), else the delivery state plus the configured curves."""
+        path = self.memory_path
+        if path is not None and path.exists():
+            try:
+                return CamMemory.load(path)
+            except (CompaxError, OSError) as e:
+                problems.append(f"device.memory_file = {config.memory_file!r}: {e}")
+                return None
+        memory = CamMemory()
+        for i, entry in sorted(enumerate(config.curves), key=lambda x: x[1].number):
+            try:
+                write_curve(memory, self._curve(entry))
+            except (CompaxError, ValueError, OSError) as e:
+                problems.append(f"device.curves[{i}] (curve {entry.number}): {e}")
+        memory.vf()
+        return memory
+
+    def _curve(self, entry: CurveEntry) -> CurveRecord:
+        from axisline.motion.cam import PointTable
+        from axisline.motion.segments import SegmentCam
+
+        block = entry.block()
+        if entry.csv is not None:
+            path = self._path(entry.csv)
+            assert path is not None
+            table = PointTable.from_csv(path)
+            return curve_from_table(table, entry.number, slave_cycle=entry.slave_cycle, points=entry.points, **block)
+        if entry.segments is not None:
+            cam = SegmentCam(entry.segments, start=entry.start, master_period=entry.master_period, periodic=True)
+        else:
+            cams = getattr(self.machine, "cams", {})
+            if entry.cam not in cams:
+                raise ValueError(f"cam = {entry.cam!r}: no such [[cam]] (cams: {', '.join(cams) or 'none'})")
+            cam = cams[entry.cam]
+        assert entry.points is not None
+        return curve_from_cam(cam, entry.number, entry.points, slave_cycle=entry.slave_cycle, **block)
+
+    def _parameters(self, config: CompaxConfig, counts_per_unit: float | None, preferred_p98: float | None,
+                    problems: list[str]) -> Parameters | None:
+        path = self.parameter_path
+        if path is not None and path.exists():
+            try:
+                return load_parameters(path)
+            except (CompaxError, OSError) as e:
+                problems.append(f"device.parameter_file = {config.parameter_file!r}: {e}")
+                return None
+        params = Parameters()
+        values = config.parameter_values()
+        for n, v in values.items():
+            params[n] = v  # checked by the config model already
+        if config.master == "internal":
+            if 30 not in values:
+                params[30] = 1
+            elif int(values[30]) % 10 != 1:
+                problems.append(f"device.parameters: P30 = {values[30]} selects the encoder, but device.master = 'internal' "
+                                "(the internal time base is P30 = 1 or 11)")
+        elif counts_per_unit is not None and 98 not in values and 143 not in values:
+            scaling = derive_master_scaling(counts_per_unit, preferred_p98=preferred_p98)
+            if scaling is None:
+                problems.append(f"device.master = {config.master!r}: its encoder counts {counts_per_unit:g} increments per "
+                                "master unit; set P98 and P143 in device.parameters so that 4*P143/P98 equals it")
+            else:
+                params[98], params[143] = scaling
+        try:
+            params.make_valid("VC")
+            params.make_valid("VP")
+        except CompaxError as e:
+            problems.append(f"device.parameters: {e}")
+        return params
+
+    def _signal(self, value: bool | str) -> Any:
+        if isinstance(value, bool):
+            return value
+        sensor = self.machine.sensors.get(value)
+        if sensor is not None:
+            return lambda: sensor.state
+        machine = self.machine
+        return lambda: machine.io.read(value)  # the machine builds its io after the personality
+
+    def _sensor(self, value: bool | str | None) -> Any:
+        if isinstance(value, str):
+            return self.machine.sensors.get(value)
+        return None
+
+    # ------------------------------------------------------------------ per cycle
+
+    def _new_edges(self, sensor: Any) -> list[Any]:
+        """Edges of the sensor not handed over yet (those of the last plant step)."""
+        last = self._edge_seen.get(sensor.name, -math.inf)
+        out = []
+        for e in reversed(sensor.edges):
+            if e.time <= last:
+                break
+            out.append(e)
+        if out:
+            out.reverse()
+            self._edge_seen[sensor.name] = out[-1].time
+        return out
+
+    def _add_trace_channels(self) -> None:
+        m = self.machine
+        trace = getattr(m, "trace", None)
+        if trace is None or not self.config.trace or m.config.trace.channels != "all":
+            return
+        op = self.op
+        for name, getter, unit, kind in (
+            ("compax.S44", lambda: op.chain.s44, "per mille", float),
+            ("compax.S45", lambda: op._s45, "per mille", float),
+            ("compax.S52", lambda: self.label.s52, "per mille", float),
+            ("compax.O14", lambda: op.output(14), "", bool),
+            ("compax.O15", lambda: op.output(15), "", bool),
+            ("compax.O16", lambda: op.output(16), "", bool),
+            ("compax.state", lambda: _STATE_CODE[op.state], "", int),
+        ):
+            if name in trace.channels:
+                continue
+            try:
+                trace.add_channel(name, getter, unit=unit, kind=kind)
+            except RuntimeError:  # the scope has started recording: it keeps its channels
+                return
+
+    def tick(self, cycle: int) -> None:
+        op = self.op
+        t = cycle * self.period
+        if self._first:
+            self._first = False
+            self._add_trace_channels()
+            self.log.start(t)
+        self._run_program(cycle)
+        fresh: dict[str, list[Any]] = {}
+        for sensor in (self._i14, self._i16):
+            if sensor is not None and sensor.name not in fresh:  # I14 and I16 may be one sensor
+                fresh[sensor.name] = self._new_edges(sensor)
+        i14_edges = None
+        if self._i14 is not None:
+            i14_edges = [(e.fraction, e.rising) for e in fresh[self._i14.name]]
+        latch = None
+        enc = self.encoder
+        raw = int(enc.counts) if enc is not None else None
+        if self._i16 is not None:
+            edges = fresh[self._i16.name]
+            if raw is not None and self._enc_prev is not None:
+                rising = next((e for e in edges if e.rising), None)
+                if rising is not None:
+                    delta = getattr(enc, "delta", None)
+                    moved = delta(raw, self._enc_prev) if callable(delta) else raw - self._enc_prev
+                    latch = self._enc_prev + round(rising.fraction * moved)
+        self._enc_prev = raw
+        op.tick(cycle, i14_edges=i14_edges, i16_latch=latch)
+        # records of the cycle
+        log = self.log
+        label = self.label
+        curve = op.curve
+        if label.accepted:
+            length = 0.0
+            if curve is not None:
+                length = curve.slave_cycle * op.p36 if label.mode == 2 else curve.master_cycle
+            for s51, s52 in label.accepted:
+                log.label(t, s51, s52, length)
+            label.accepted.clear()
+        if label.amount:
+            log.correction(1000.0 * label.amount)
+            label.amount = 0.0
+        log.tracking(self.axis.following_error)
+        log.outputs(t, op.output(15), op.output(16))
+        wraps = op.chain.wraps if curve is not None else 0
+        for _ in range(max(0, wraps)):
+            log.wrap(t, curve=int(op.status(43)), state=op.state.value, label_ok=label.o14 if label.active else True,
+                     synchronous=op.output(16))
+        if op.last_error != self._op_error:
+            self._op_error = op.last_error
+            if op.last_error:
+                self.status[30] = op.last_error
+        if self._outputs:
+            io = self.machine.io
+            for n, io_name in self._outputs:
+                io.write(io_name, op.output(n))
+
+    # ------------------------------------------------------------------ start-up program
+
+    def _busy(self, key: str) -> bool:
+        """The program waits: a LOOP is active (P210 = 0), the slave is positioning, or a
+        LOOP / POSR CAM needs the power stage (I12) that is still off."""
+        op, ax = self.op, self.axis
+        parallel = int(param(self.params, 210)) == 1
+        if not parallel and (op.loop_active or ax.state in _MOVING):
+            return True
+        if _MOTION.match(key) and not op.loop_active and ax.state in (AxisState.DISABLED, AxisState.ERROR_STOP, *_MOVING):
+            return True
+        return False
+
+    def _run_program(self, cycle: int) -> None:
+        program = self.program
+        while self.pc < len(program):
+            line = program[self.pc]
+            key = "".join(line.split()).upper()
+            if key.startswith("WAIT"):
+                if self._wait_until is None:
+                    ms = float(key[4:])
+                    self._wait_until = cycle + max(0, math.ceil(ms / 1000.0 / self.period - 1e-9))
+                if cycle < self._wait_until:
+                    return
+                self._wait_until = None
+                self.pc += 1
+                continue
+            if self._busy(key):
+                return
+            reply = self._local.execute(line)
+            if reply.startswith(b"!E"):
+                text = reply.decode("ascii", "replace").removesuffix("\r\n>")
+                self.program_errors.append({"line": self.pc + 1, "text": line, "reply": text, "t": cycle * self.period})
+                self.machine.faults.append(f"t={cycle * self.period:.4f} s device: start-up line {self.pc + 1} {line!r}: {text}")
+                self.pc = len(program)  # a program stops at an error
+                return
+            self.pc += 1
+
+    # ------------------------------------------------------------------ Personality API
+
+    def byte_endpoint(self) -> CompaxEndpoint:
+        """The ASCII interface (a new line buffer per transport; memory, parameters and
+        status are this device's). Writes need `network_writes`."""
+        return CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: self.network_writes)
+
+    def persist(self) -> list[Path]:
+        """Save the cam memory (and the parameters, with parameter_file) atomically."""
+        files = []
+        if self.memory_path is not None:
+            self.memory_path.parent.mkdir(parents=True, exist_ok=True)
+            self.memory.save(self.memory_path)
+            files.append(self.memory_path)
+        if self.parameter_path is not None:
+            self.parameter_path.parent.mkdir(parents=True, exist_ok=True)
+            save_parameters(self.params, self.parameter_path)
+            files.append(self.parameter_path)
+        return files
+
+    def curve(self, number: int, *, valid: bool = True) -> CurveRecord:
+        """Curve `number` of the cam memory (the valid copy, what SETC selects)."""
+        return read_curve(self.memory, number, valid=valid)
+
+    def export_curve(self, number: int, path: str | Path) -> Path:
+        """Write curve `number` (the memory as written) as a master,slave CSV."""
+        curve_to_csv(read_curve(self.memory, number, valid=False), path)
+        return Path(path)
+
+    def status_values(self) -> dict[str, float]:
+        return {f"S{n}": float(self.status.read(n)) for n in _STATUS_NUMBERS}
+
+    def summary(self) -> dict[str, Any]:
+        op = self.op
+        records = self.log.as_list()
+        labelled = [r for r in records if r["error_before"] is not None]
+        tol = self.config.label_tolerance
+        return {
+            "slave": self.config.slave,
+            "master": self.config.master,
+            "state": op.state.value,
+            "curve": int(op.status(43)) if op.curve is not None else None,
+            "loop_active": op.loop_active,
+            "outputs": {f"O{n}": op.output(n) for n in range(7, 17)},
+            "status": self.status_values(),
+            "program": {
+                "lines": len(self.program),
+                "next_line": self.pc + 1 if self.pc < len(self.program) else None,
+                "done": self.pc >= len(self.program) and not self.program_errors,
+                "errors": list(self.program_errors),
+            },
+            "label": {
+                "mode": {0: "off", 1: "master related", 2: "slave related"}.get(self.label.mode, str(self.label.mode)),
+                "cycles_with_label": len(labelled),
+                "tolerance_per_mille": tol,
+                "converged_from_cycle": converged_after(records, tol) if labelled else None,
+                "last_error_per_mille": labelled[-1]["error_before"] if labelled else None,
+            },
+            "cycles": records,
+        }
+
+    def write_report(self, out_dir: str | Path) -> list[Path]:
+        """compax_cycles.json and compax_label.png into out_dir (for `axisline run --report`)."""
+        curve = self.op.curve
+        window = 1000.0 * min(curve.label_window, 0.3) if curve is not None and curve.label_window else None
+        title = f"{self.machine.config.machine.name} (COMPAX, slave {self.config.slave})"
+        return write_report(self.log.records, out_dir, status=self.status_values(), title=title, window=window,
+                            tracking_limit=float(param(self.params, 79)))
