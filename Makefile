@@ -18,7 +18,7 @@ $(STAMP): $(BIN)/python pyproject.toml constraints.txt
 setup: $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/axisline run examples/positioning.toml --report out/demo
+	$(BIN)/axisline run examples/flying_shear.toml --report out/demo
 
 test: $(STAMP)
 	$(BIN)/python -m pytest

@@ -88,15 +88,23 @@ def run(
         m.trace.save_npz(trace_out)
         m.trace.save_csv(trace_out.with_suffix(".csv"))
         summary["trace"]["file"] = str(trace_out)
+    device_plots: list[Path] = []
     if plot_dir is not None and m.trace is not None:
         from .report.plots import plot_trace
 
         files = plot_trace(m.trace.data(), m.trace.units, plot_dir, title=m.config.machine.name)
         summary["plots"] = [str(f) for f in files]
+    if plot_dir is not None and m.device is not None:  # a personality's own figures
+        device_plots = m.device.plots(plot_dir, m.trace.data() if m.trace is not None else None)
+        summary["plots"] = [str(f) for f in device_plots] + summary.get("plots", [])
     if report_dir is not None:
         from .report.markdown import write_report
 
-        summary["report"] = str(write_report(summary, report_dir, [Path(p) for p in summary.get("plots", [])]))
+        generic = [Path(p) for p in summary.get("plots", []) if Path(p) not in device_plots]
+        path = write_report(summary, report_dir, generic)
+        if m.device is not None and summary.get("device"):
+            _insert_device_section(path, m.device.report_markdown(summary["device"], device_plots))
+        summary["report"] = str(path)
     if json_out is not None:
         from .kernel import atomic_write_text
 
@@ -104,6 +112,16 @@ def run(
         atomic_write_text(json_out, json.dumps(summary, indent=2) + "\n")
     _print_summary(summary)
     raise typer.Exit(0 if result.completed else 1)
+
+
+def _insert_device_section(path: Path, section: str) -> None:
+    """Put a personality's report section (Markdown) before the generic plots of report.md."""
+    from .kernel import atomic_write_text
+
+    text = path.read_text(encoding="utf-8")
+    at = text.find("\n## Plots\n")
+    text = text + "\n" + section if at < 0 else text[: at + 1] + section + "\n" + text[at + 1 :]
+    atomic_write_text(path, text)
 
 
 def _print_summary(s: dict) -> None:
@@ -115,6 +133,9 @@ def _print_summary(s: dict) -> None:
     out.print(t)
     job = s["job"]
     out.print(f"job: {'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s), {len(job['events'])} command(s)")
+    device = s.get("device") or {}
+    if device.get("headline"):  # a personality's one-line result (e.g. the FS701's batch)
+        out.print(device["headline"], markup=False)
     for f in s["faults"]:
         out.print(f"[red]fault[/red] {f}", markup=True)
     out.print("[green]completed[/green]" if s["completed"] else "[red]not completed[/red]")
@@ -188,6 +209,29 @@ def cam(
         plot_cam(curve, master_speed, plot_file, title=f"cam {name}")
         out.print(str(plot_file))
     raise typer.Exit(0 if r.within_limits else 1)
+
+
+compax_app = typer.Typer(help="COMPAX XX70 tools.", no_args_is_help=True)
+app.add_typer(compax_app, name="compax")
+
+
+@compax_app.command("plot")
+def compax_plot(
+    curves: Path = typer.Argument(..., help="saved cam memory (.json) or a master,slave CSV"),
+    curve: int = typer.Argument(..., help="curve number"),
+    master_speed: float = typer.Option(..., "--master-speed", help="master speed, master units/s"),
+    out_file: Path = typer.Option(..., "--out", help="PNG to write"),
+    p36: float = typer.Option(1.0, "--p36", help="slave factor P36"),
+) -> None:
+    """Draw a COMPAX curve with the slave's velocity and acceleration at a master speed."""
+    from .devices.compax import CompaxError
+    from .devices.compax.report import plot_curve
+
+    try:
+        out.print(str(plot_curve(curves, curve, master_speed, out_file, p36=p36)))
+    except (CompaxError, OSError, ValueError) as e:
+        console.print(f"[red]cannot plot curve {curve}[/red] of {curves}: {e}")
+        raise typer.Exit(2) from None
 
 
 @app.command()

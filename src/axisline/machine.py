@@ -56,6 +56,12 @@ class AxisUnit:
     velocity_output: float = 0.0
     max_following_error: float = 0.0
     max_speed: float = 0.0
+    #: a device's own position controller in place of the axis' Kv loop (Machine.drive_by):
+    #: called in POSITION_LOOP with (actual position, drive velocity), returns the drive command
+    controller: Callable[[float, float], float] | None = None
+    #: the controller's output is volts on the analog input (else a velocity, units/s)
+    controller_volts: bool = False
+    command_volts: float = 0.0
 
     def __post_init__(self) -> None:
         self._unit_per_count = 1.0 / self.encoder.counts_per_unit if self.encoder is not None else 0.0
@@ -68,7 +74,14 @@ class AxisUnit:
 
     def loop(self, cycle: int) -> None:
         v = self.drive.velocity
-        self.velocity_output = self.axis.position_loop(self.actual_position, v)
+        ctl = self.controller
+        if ctl is None:
+            self.velocity_output = self.axis.position_loop(self.actual_position, v)
+        elif self.controller_volts:
+            self.command_volts = u = ctl(self.actual_position, v)
+            self.velocity_output = u * self.drive.velocity_per_volt  # nominal: the scope's "output"
+        else:
+            self.velocity_output = ctl(self.actual_position, v)
         fe = self.axis.following_error
         if fe > self.max_following_error or -fe > self.max_following_error:
             self.max_following_error = abs(fe)
@@ -225,7 +238,10 @@ class Machine:
 
             # the classic +-10 V interface: the amplifier's offset, drift and gain errors apply
             def command() -> None:
-                drive.command_voltage(unit.velocity_output * volts_per_velocity)
+                if unit.controller_volts:  # a device's analogue output (Machine.drive_by)
+                    drive.command_voltage(unit.command_volts)
+                else:
+                    drive.command_voltage(unit.velocity_output * volts_per_velocity)
 
         else:
 
@@ -239,6 +255,21 @@ class Machine:
             drive.step(dt)
 
         return actuate
+
+    def drive_by(self, axis: str, controller: Callable[[float, float], float], *, volts: bool = True) -> None:
+        """Let a device's own position controller drive `axis` instead of the axis' Kv loop.
+
+        `controller(actual_position, drive_velocity)` runs in POSITION_LOOP in place of
+        `Axis.position_loop` (it should call that itself for the axis' bookkeeping: following
+        error, actual position) and returns the drive command: volts for a servo's analogue
+        input (`volts=True`: an analog servo gets them with its offset, drift and gain errors, a
+        digital one their nominal velocity), else a velocity in units/s. Steppers have no loop.
+        """
+        unit = self.units[axis]
+        if isinstance(unit.drive, StepperDrive):
+            raise ValueError(f"axis {axis!r}: a stepper drive has no position loop to replace")
+        unit.controller = controller
+        unit.controller_volts = bool(volts)
 
     def _plant_step(self, cycle: int) -> None:
         """The rest of the plant after the drives moved: material, then every sensor's edges."""
@@ -295,6 +326,9 @@ class Machine:
             for k, v in sig.items():
                 available[f"{name}.{k}"] = v
         available.update(self._plant_channels())
+        device_channels = getattr(self.device, "trace_channels", None)
+        if device_channels is not None:  # a personality's own signals ("fs701.line_speed", ...)
+            available.update(device_channels())
         wanted = list(available) if tc.channels == "all" else tc.channels
         unknown = [c for c in wanted if c not in available]
         if unknown:
@@ -407,8 +441,16 @@ class Machine:
             for u in self.units.values()
         )
 
+    def device_finished(self) -> bool | None:
+        """The personality's own job (a batch): None if it runs none, else whether it is done."""
+        if self.device is None:
+            return None
+        done = getattr(self.device, "finished", None)
+        return None if done is None else bool(done)
+
     def run(self, duration: float | None = None, progress: Callable[[float], None] | None = None, until_job_done: bool = True) -> RunResult:
-        """Simulate: run until the job is done and every axis is at rest, or `duration` seconds."""
+        """Simulate: run until the job (and the personality's own job, if it runs one) is done
+        and every axis is at rest, or `duration` seconds."""
         limit = self.config.machine.duration if duration is None else duration
         cycles = max(1, round(limit / self.period))
         start_cycle = self.clock.cycle
@@ -416,9 +458,17 @@ class Machine:
         every = max(1, cycles // 200)
         completed = False
         s = self.scheduler
+        device_job = self.device_finished() is not None
+        has_job = bool(self.config.job.steps) or device_job
         for i in range(cycles):
             s.run_cycle()
-            if until_job_done and self.job.finished and self.at_rest() and self.config.job.steps:
+            if (
+                until_job_done
+                and has_job
+                and self.job.finished
+                and (not device_job or self.device_finished())
+                and self.at_rest()
+            ):
                 completed = True
                 break
             if progress is not None and i % every == 0:
@@ -426,9 +476,11 @@ class Machine:
         else:
             # A duration asked for explicitly is a complete run; the file's own limit
             # reached with the job still running is a timeout.
-            completed = duration is not None or not self.config.job.steps or self.job.finished
+            device_done = not device_job or bool(self.device_finished())
+            completed = duration is not None or not has_job or (self.job.finished and device_done)
             if not completed:
-                self.faults.append(f"job not finished within machine.duration = {limit:g} s")
+                what = "job" if not self.job.finished else f"{self.config.machine.personality} job"
+                self.faults.append(f"{what} not finished within machine.duration = {limit:g} s")
         if progress is not None:
             progress(1.0)
         n = self.clock.cycle - start_cycle

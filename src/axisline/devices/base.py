@@ -98,8 +98,27 @@ class Personality(ABC):
         """Save what must survive a restart (atomically); returns the files written."""
         return []
 
+    # -- reporting (axisline run) ---------------------------------------------------------
+
+    #: None: the device runs no job of its own; else True once its job (a batch) is done,
+    #: which the simulated run waits for like the machine file's job
+    finished: bool | None = None
+
     def summary(self) -> dict[str, Any]:
+        """The device's part of the run summary (JSON); `headline` is printed by `run`."""
         return {}
+
+    def trace_channels(self) -> dict[str, tuple[Any, str, type]]:
+        """Extra scope channels: name -> (getter, unit, float|int|bool)."""
+        return {}
+
+    def plots(self, out_dir: str | Path, data: dict | None, units: dict | None = None) -> list[Path]:
+        """The device's own figures for `run --plot/--report` (files written)."""
+        return []
+
+    def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
+        """The device's section of report.md."""
+        return ""
 
 
 register("wago672", "axisline.devices.wago672.personality:Wago672Personality")

@@ -748,6 +748,20 @@ class CompaxPersonality(Personality):
             "cycles": records,
         }
 
+    def plots(self, out_dir: str | Path, data: dict | None, units: dict | None = None) -> list[Path]:
+        """`run --plot/--report`: the label plot (and compax_cycles.json beside it)."""
+        return [f for f in self.write_report(out_dir) if f.suffix == ".png"]
+
+    def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
+        label = device_summary.get("label", {})
+        lines = ["## COMPAX label synchronisation", "",
+                 f"- label synchronisation: {label.get('mode')}, {label.get('cycles_with_label')} master cycles with a label",
+                 f"- converged (|error| <= {label.get('tolerance_per_mille')} ‰) from master cycle {label.get('converged_from_cycle')}",
+                 f"- last label error: {label.get('last_error_per_mille')} ‰", "",
+                 "Per master cycle (label value, error before and after correction, tracking error, O15/O16): `compax_cycles.json`.", ""]
+        lines += [f"![{p.stem}]({p.name})" for p in plots]
+        return "\n".join(lines) + "\n"
+
     def write_report(self, out_dir: str | Path) -> list[Path]:
         """compax_cycles.json and compax_label.png into out_dir (for `axisline run --report`)."""
         curve = self.op.curve
