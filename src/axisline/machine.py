@@ -138,6 +138,7 @@ class Machine:
         for mark in config.marks:
             self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, self.child_rng(f"marks:{mark.name}")))
         self._add_sync(config)
+        self.io = config.io.build()  # before the personality, which may wire its inputs to it
         self.device = None  # the personality (devices/base.py), if the machine file names one
         dev_cfg = device_config(config, source or "<machine>")
         if dev_cfg is not None:
@@ -145,7 +146,6 @@ class Machine:
 
             self.device = base.load(config.machine.personality)(self, dev_cfg)
             self.scheduler.add_task("device", self.device.tick, Stage.LOGIC, every=config.machine.logic_every)
-        self.io = config.io.build()
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
             self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
@@ -337,6 +337,22 @@ class Machine:
             getter, unit, kind = available[c]
             tr.add_channel(c, getter, unit=unit, kind=kind)
         return tr
+
+    def signal(self, wiring: bool | str) -> bool | Callable[[], bool]:
+        """A device input as the machine file wires it: a constant, or a function reading a
+        switch/sensor ("x.ref", "marks") or a digital input of the I/O image, by name."""
+        if isinstance(wiring, bool):
+            return wiring
+        sensor = self.sensors.get(wiring)
+        if sensor is not None:
+            return lambda: sensor.state
+        if wiring in self.config.io.inputs:
+            io = self.io
+            return lambda: io.read(wiring)
+        raise ConfigError(self.source or "<machine>", [
+            f"input wiring {wiring!r}: no such switch, sensor or io input "
+            f"(switches/sensors: {', '.join(self.sensors) or 'none'}; io inputs: {', '.join(self.config.io.inputs) or 'none'})"
+        ])
 
     # -- commands -----------------------------------------------------------------------
 

@@ -192,13 +192,7 @@ class Wago672Personality(Personality):
 
     def _signal(self, value: bool | str) -> Any:
         """A wired input: a constant, or a function reading a sensor or an io input."""
-        if isinstance(value, bool):
-            return value
-        sensor = self.machine.sensors.get(value)
-        if sensor is not None:
-            return lambda: sensor.state
-        machine = self.machine
-        return lambda: machine.io.read(value)  # the machine builds its io after the personality
+        return self.machine.signal(value)
 
     # ------------------------------------------------------------------ Personality
 
