@@ -648,6 +648,12 @@ class Correction:
     The range and ``spread`` assume a master that moves forward by less than a cycle per step,
     as label registration requires.
 
+    ``in_phase``: the correction is injected into the very master position given to
+    :meth:`step` (a correction before the curve, in the master position integrator). The range
+    and the spread are then measured in the uncorrected master travel (the phase minus the
+    correction's own steps), from the corrected position at the last :meth:`set`; otherwise each
+    share would move the master, which makes the next share bigger (positive feedback, a jump).
+
     With none of these the whole pending correction is applied in the next cycle.
     """
 
@@ -658,8 +664,10 @@ class Correction:
         "enable_to",
         "master_cycle",
         "spread",
+        "in_phase",
         "_length",
         "_prev",
+        "_pos",
         "requested",
         "pending",
         "applied",
@@ -675,6 +683,7 @@ class Correction:
         enable_to: float | None = None,
         master_cycle: float | None = None,
         spread: bool = False,
+        in_phase: bool = False,
     ) -> None:
         self.max_per_mark = _check_limit("max_per_mark", max_per_mark)
         self.max_per_cycle = _check_limit("max_per_cycle", max_per_cycle)
@@ -695,11 +704,13 @@ class Correction:
             self.enable_from = self.enable_to = math.nan
             self._length = math.nan
         self.spread = bool(spread)
+        self.in_phase = bool(in_phase)
         self.reset()
 
     def reset(self) -> None:
         """Forget all corrections (pending and applied)."""
         self._prev = math.nan
+        self._pos = math.nan
         self.requested = 0.0
         """Last correction given to :meth:`set`, before the per-mark limit."""
         self.pending = 0.0
@@ -721,6 +732,7 @@ class Correction:
         limit = self.max_per_mark
         limited = max(-limit, min(limit, correction))
         self.pending = limited
+        self._pos = self._prev  # in_phase: the range is measured from the corrected position now
         return limited
 
     def cancel(self) -> None:
@@ -739,7 +751,16 @@ class Correction:
         prev = now if math.isnan(self._prev) else self._prev
         self._prev = now
         # master increases (as label registration requires); travel below a cycle per step
-        travel = phase(now - prev, cycle)
+        if self.in_phase:
+            # the phase carries the correction's own last step: take it out (uncorrected travel)
+            travel = phase(now - prev - self.last_step, cycle)
+            if math.isnan(self._pos):
+                self._pos = prev
+            prev = self._pos
+            now = phase(prev + travel, cycle)
+            self._pos = now
+        else:
+            travel = phase(now - prev, cycle)
         if prev < length:
             remaining = length - prev
             inside = min(travel, remaining)

@@ -330,3 +330,35 @@ def test_operation_parameters_as_arguments():
     assert rig.op.status(48) == 3
     with pytest.raises(CompaxError):
         rig.op.setc(".P39")
+
+
+def _quantised_run(p68: float, cycles: int = 400) -> tuple[list[float], list[float]]:
+    """A master encoder that counts 3 and 4 increments in turn (3.5 per ms: quantisation noise of a
+    low-resolution master channel); the slave on the straight line. Returns (positions, speeds)."""
+    rig = Rig(P68=p68)
+    coupled(rig)
+    rig.record = True
+    for k in range(cycles):
+        rig.speed = 3 + k % 2
+        rig.step()
+    tail = rig.trace[-200:]
+    return [r[1] for r in tail], [r[2] for r in tail]
+
+
+def test_p68_filters_the_speed_feed_forward_only():
+    # D19: P68 (compax.md §2.1 "optional filter P68", §3 "Only use filter P68, if quantization
+    # noises can be heard due to low resolution in the master channel"): PT1, T_f = P68 % of 1 ms
+    p0, v0 = _quantised_run(0.0)
+    p2, v2 = _quantised_run(200.0)  # T_f = 2 ms: alpha = 1/3, the 3-4-3-4 ripple x alpha / (2 - alpha) = 0.2
+    ripple0 = max(v0) - min(v0)
+    ripple2 = max(v2) - min(v2)
+    assert ripple0 == pytest.approx(1000.0, rel=1e-6)  # 3 vs 4 deg per ms: 1000 deg/s peak to peak
+    assert ripple2 == pytest.approx(0.2 * ripple0, rel=1e-3)
+    assert sum(v2) / len(v2) == pytest.approx(3500.0, rel=1e-3)  # the mean speed is kept
+    assert p2 == pytest.approx(p0)  # the position set point is not filtered
+
+
+def test_p68_0_is_off():
+    # P68 = 0 "filter switched off": the feed-forward follows the master speed at once
+    _, v0 = _quantised_run(0.0, cycles=50)
+    assert v0[-1] in (3000.0, 4000.0) and abs(v0[-1] - v0[-2]) == pytest.approx(1000.0)

@@ -366,3 +366,58 @@ def test_slave_related_start_up_x13():
     assert rig.op.label.correction.applied == pytest.approx(-140 / 360, abs=0.005)
     assert all(abs(s52) < 2.0 for s52 in taken[1:]) and len(taken) >= 4
     assert rig.op.output(14)
+
+
+def test_early_label_large_correction_is_no_jump():
+    # L11 (§2.13 M_k1 / M_k2 "When the corrections are allocated, it is ensured that the corrections
+    # are terminated in the next label window"): a label early in the window, inside M_k1 ... M_k2,
+    # whose correction (15 % forward) is larger than the rest of the range ahead (10 %). The injected
+    # correction moves the master itself; the share must be measured in the uncorrected master
+    # travel, else each share makes the next bigger (a jump). Here the correction runs out with
+    # 10 % of uncorrected travel: the slave feeds (1 + 15/10) times the speed, no more.
+    rig = master_rig(ref=0.5, window=0.2, k1=0.3, k2=0.45, speed=4)
+    labels = Labels(rig, first=0.35 * M_T)
+    rig.record = True
+    accepted = run_labels(rig, labels, 90 * 6)
+    assert accepted[0] == pytest.approx((350.0, -150.0), abs=1.5)
+    steps = [b[1] - a[1] for a, b in zip(rig.trace, rig.trace[1:])]
+    assert steps[-1] == pytest.approx(4.0)  # synchronous at the master speed (4 units per cycle)
+    assert max(steps) <= 4.0 * (1.0 + 0.15 / 0.10) + 0.2  # no step larger than the speed allows
+    assert min(steps) >= -1e-9
+    for s51, s52 in accepted[1:]:
+        assert abs(s52) <= 1.5  # converged: the next labels land on S50
+    assert rig.op.label.correction.pending == pytest.approx(0.0, abs=1e-9)
+
+
+def test_correction_in_phase_spreads_over_uncorrected_travel():
+    # L11 at the Correction level: a master that carries the correction's own offset
+    from axisline.motion.registration import Correction
+
+    c = Correction(enable_from=0.3, enable_to=0.45, master_cycle=1.0, spread=True, in_phase=True)
+    raw, speed, shares = 0.30, 0.01, []
+    c.step(raw)
+    raw += speed
+    c.step(raw)  # 0.31
+    c.set(-0.15)  # 0.15 forward, only 0.14 of the range ahead
+    for _ in range(30):
+        raw += speed
+        before = c.offset
+        c.step((raw + c.offset) % 1.0)
+        shares.append(c.offset - before)
+    assert sum(shares) == pytest.approx(0.15)
+    assert max(shares) == pytest.approx(0.15 / 0.14 * speed)  # even shares, no feedback
+    assert all(s == 0.0 for s in shares[14:])
+
+
+def test_on_label_hook_and_corrected_total():
+    # the public hook the personality records labels with: each accepted label once, (S51, S52)
+    rig = master_rig(ref=0.5, window=0.1, k1=0.6, k2=0.9)
+    seen = []
+    rig.op.label.on_label = lambda s51, s52: seen.append((s51, s52))
+    labels = Labels(rig, first=0.62 * M_T, slip=0.005)
+    accepted = run_labels(rig, labels, 90 * 5)
+    assert seen == accepted and len(seen) == 5
+    # corrected: the sum of what was applied (it survives the Correction being replaced or reset)
+    assert rig.op.label.corrected == pytest.approx(rig.op.label.correction.applied)
+    rig.op.label.interrupt()  # (SETM) restarts the master related synchronisation: applied resets, corrected not
+    assert rig.op.label.correction.applied == 0.0 and rig.op.label.corrected != 0.0

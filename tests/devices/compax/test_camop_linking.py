@@ -22,11 +22,11 @@ X14 = {
 }
 
 
-def linked_run(p93: int, program, speed: int = 4, lead: int = 30):
+def linked_run(p93: int, program, speed: int = 4, lead: int = 30, curves=None):
     """P210 = 1, P34 = 4: SETC / LOOP of the first curve, then each next SETC + LOOP as soon as
     the link slot is free and the running curve has `lead` ms or more to go. Returns the rig and
     (curve, S1, set point) at every change of the active curve and at the end."""
-    rig = Rig(X14, P210=1, P34=4, P93=p93)
+    rig = Rig(curves or X14, P210=1, P34=4, P93=p93)
     rig.record = True
     first, m = program[0]
     rig.op.setc(first)
@@ -71,6 +71,27 @@ def test_curve_linking_is_seamless():
     rig, seen = linked_run(1, [(1, 1), (3, 1), (1, 1)])
     p = [r[1] for r in rig.trace]
     assert len(p) > 3 * 90 and all(abs(b - a) <= 4.0 + 1e-9 for a, b in zip(p, p[1:]))
+
+
+def test_curve_linking_to_a_curve_not_starting_at_0_jumps():
+    # manual §15.3.4 Normal mode: "In the curve transfer, the zero point of the next curve is set
+    # to the last curve point of the last curve" / "Attention! In curves that do not begin at 0
+    # (e.g. first curve value is at 60°), COMPAX receives a set point jump when switching to these
+    # curves; i.e. the transfer is not smooth!" (compax.md §2.14, camop D14)
+    curves = {1: X14[1], 6: Curve(number=6, slave_cycle=360.0, set_points=[60.0 / 360.0, 0.5, FULL])}
+    rig, seen = linked_run(1, [(1, 1), (6, 1)], curves=curves)
+    p = [r[1] for r in rig.trace]
+    steps = [b - a for a, b in zip(p, p[1:])]
+    jumps = [k for k, d in enumerate(steps) if abs(d) > 4.0 + 1e-9]
+    assert len(jumps) == 1  # one set-point jump, at the transfer
+    k = jumps[0]
+    # the master reaches the wrap in this cycle (4° per ms): curve 1 ends at 360 = the zero point
+    # of curve 6, whose first value 60° is set at once: 356 -> 420 (4° of curve 1, then 60°)
+    assert (p[k], p[k + 1]) == pytest.approx((356.0, 420.0))
+    assert steps[k + 1] == pytest.approx(4.0 * 120.0 / 180.0)  # then curve 6's own gradient
+    assert [c for c, _, _ in seen] == [6, 6]
+    assert seen[-1][1] == pytest.approx(720.0)  # curve 6 ends at its zero point + S_T: the absolute reference
+    assert rig.op.state is CamState.IDLE
 
 
 def test_curve_linking_reset_mode_counts_back_by_the_last_curve():

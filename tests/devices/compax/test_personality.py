@@ -311,3 +311,55 @@ def test_startup_state_copy_is_independent():
     a, b = build(example_data(), EXAMPLE), build(copy.deepcopy(example_data()), EXAMPLE)
     a.device.memory.write("F", 6, 0.5)
     assert b.device.memory.read("F", 6) == 0.0
+
+
+# --------------------------------------------------------------------------- scope channels
+
+
+def test_compax_channels_come_from_the_trace_channels_hook():
+    # Personality.trace_channels(): the machine builds the scope with them (all, or named ones)
+    data = small()
+    data["trace"] = {"enabled": True, "channels": ["s.command_position", "compax.S44", "compax.O16", "compax.state"]}
+    m = build(data)
+    assert set(m.device.trace_channels()) >= {"compax.S44", "compax.S45", "compax.S52", "compax.O14",
+                                              "compax.O15", "compax.O16", "compax.state"}
+    assert list(m.trace.channels)[-3:] == ["compax.S44", "compax.O16", "compax.state"]
+    m.run(0.3)
+    d = m.trace.data()
+    assert d["compax.S44"].max() > 0.0 and d["compax.O16"][-1]
+    data["trace"] = {"enabled": True}  # all channels: the compax ones are in from the first sample
+    m = build(data)
+    assert "compax.S52" in m.trace.channels
+    data["device"]["trace"] = False
+    m = build(data)
+    assert not any(c.startswith("compax.") for c in m.trace.channels)
+    data["trace"] = {"enabled": True, "channels": ["compax.S44"]}
+    with pytest.raises(ConfigError, match="compax.S44"):
+        build(data)
+
+
+def test_analog_aux_channels_in_the_scope_and_the_summary():
+    # P1 (compax.md §2.1 "2 analogue signals within +/- 10V", §7 X22 volt = signed byte · 10 / 128):
+    # the curve's analogue aux functions, interpolated over the master position, as compax.A0 / A1
+    import dataclasses
+
+    from axisline.devices.compax.curves import write_curve
+
+    data = small()
+    data["trace"] = {"enabled": True, "channels": ["compax.S44", "compax.A0", "compax.A1"]}
+    m = build(data)
+    dev = m.device
+    assert dev.summary()["analog"] == {"A0": 0.0, "A1": 0.0}  # no curve selected yet
+    curve = dev.curve(1, valid=False)
+    assert curve.n_points == 2
+    write_curve(dev.memory, dataclasses.replace(curve, aux_digital=[0, 0], aux_analog0=[0, 127], aux_analog1=[-128, 0]))
+    dev.memory.vf()
+    m.run(0.5)
+    d = m.trace.data()
+    u = d["compax.S44"] / 1000.0  # the master position, fraction of the cycle
+    assert d["compax.A0"] == pytest.approx(u * 127 * 10 / 128, abs=1e-6)
+    assert d["compax.A1"] == pytest.approx((1 - u) * -10.0, abs=1e-6)
+    s = dev.summary()["analog"]
+    u = dev.op.chain.s44 / 1000.0
+    assert s["A0"] == pytest.approx(u * 127 * 10 / 128) and s["A1"] == pytest.approx((u - 1) * 10.0)
+    assert d["compax.A0"].max() > 5.0 and d["compax.A1"].min() < -5.0

@@ -126,13 +126,24 @@ wins over the spec; each has a test in tests/devices/compax/test_camop*.py):
   given later than 10 ms before the end is not a link: the running LOOP ends as it would
   alone, and the linked SETC + LOOP then start as a new LOOP (coupling per I13 and P34, so the
   partial first cycle is not counted). A linking SETC does not disable the master counting
-  (§15.3.1) and makes P34 ("VP & SETC") valid for the linked curve. Tests: test_camop_linking.py.
+  (§15.3.1) and makes P34 ("VP & SETC") valid for the linked curve. Tests: test_camop_linking.py;
+  the jump onto a curve not starting at 0 (manual §15.3.4 "Attention! In curves that do not
+  begin at 0 ... a set point jump"): test_curve_linking_to_a_curve_not_starting_at_0_jumps.
 * D17 Operation parameters as arguments (§2.8 "SETC .P40, SETM .P40, LOOP .P40"): the string
   ".P40" ... ".P49" stands for the valid value of that parameter. Test:
   test_operation_parameters_as_arguments.
 * D18 D/A monitor (§2.12 signals 20 ... 24): 22 = the master position in the cycle (M_T ≙
   100 mV), 23 = the curve value S45 (S_T ≙ 100 mV), 24 = S41 (20000 min⁻¹ ≙ 10 V), times the
   gain, limited to ±10 V. Tests: test_da_monitor_* (§7 X8).
+* D19 P68 "Filter for external speed feed forward; 0: filter switched off", % 0 ... 550, VP
+  (compax.md §2.1 "numerical differentiation; optional filter P68", §3 P68 "Only use filter P68,
+  if quantization noises can be heard due to low resolution in the master channel. Otherwise,
+  set to 0 to reduce the tracking error to a minimum"; the filter type is [GAP]): a first-order
+  low-pass (PT1, backward Euler) on the speed feed-forward only, time constant T_f = P68 % of
+  the 1 ms cycle (100 % = 1 ms, 550 % = 5.5 ms); the position set point and the acceleration
+  feed-forward are not filtered (so the filter costs tracking accuracy, as the manual warns).
+  The filter starts from the feed-forward the slave had (0 at LOOP) and reads the valid P68
+  every cycle. Tests: test_p68_filters_the_speed_feed_forward_only, test_p68_0_is_off.
 * D15 Software limits (§2.4): in normal mode with P11/P12 set, a set point beyond a limit
   stops the slave (ramp), interrupts the cam operation, blocks master counting and reports
   E25; supervision resumes once the slave is back inside. Test: test_software_limit_e25.
@@ -1022,7 +1033,13 @@ class CamOperation:
         else:
             p, dp, ddp = self._hold, 0.0, 0.0
         self._p = p - self._R
-        self._v = dp * Ud
+        v = dp * Ud
+        p68 = float(param(self.params, 68))
+        if p68 > 0.0:
+            # D19: P68, first-order low-pass on the speed feed-forward, T_f = P68 % of 1 ms
+            tf = p68 / 100.0 * 1e-3
+            v = self._v + (v - self._v) * (self.period / (self.period + tf))
+        self._v = v
         self._a = ddp * Ud * Ud + dp * Udd
         self._check_limits()
 

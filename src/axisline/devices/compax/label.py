@@ -4,6 +4,8 @@ manual §14, §15.3.2, §19.2, §20, §21).
     label = LabelSync()
     op = CamOperation(axis, params, curves, encoder=enc, inputs=inputs, label=label)
     op.tick(cycle, i14_edges=sensor_edges)      # the label input's edges of the cycle
+    label.on_label = lambda s51, s52: ...       # each accepted label (S51, S52 in per mille)
+    label.corrected                             # correction applied so far (fraction of the cycle)
 
 The label sensor is on I14. The device polls I14 every 100 µs; an edge from the plant (with its
 exact moment in the 1 ms cycle) is seen at the next 100 µs poll, and the label value is the
@@ -65,12 +67,20 @@ Decisions (spec line -> choice, why); each has a test in tests/devices/compax/te
 * L9 S13/S14 code 31 "function pointer" ([GAP]: values not given): 0 off, 1 first measurement
   (no window), 2 start-up (until a label lies in the window), 3 window, +10 while a correction
   is in progress. Code 32 runs 0 ... 1000 per mille over a correction.
+* L11 Master related distribution over M_k1 ... M_k2 (§2.13 "positive or negative correction
+  pulses into the integrator for the master position"; "it is ensured that the corrections are
+  terminated in the next label window"): the pulses move the master the range is measured in, so
+  the correction is spread over the rest of the range measured in the uncorrected master travel
+  (from the corrected position when the label is taken; `Correction(in_phase=True)`). A
+  correction larger than the rest of the range makes the master run at most
+  (1 + F_k / rest) times its speed, never a jump. Tests: test_early_label_large_correction_is_no_jump,
+  test_correction_in_phase_spreads_over_uncorrected_travel.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Callable
 
 from axisline.devices.compax.masterchain import param
 from axisline.motion.registration import Correction, phase, wrap
@@ -125,6 +135,12 @@ class LabelSync:
         self._total = 0.0  # size of the correction in progress (for indicator 32)
         self._was_active = False
         self._range: tuple[float, float] | None = None  # (M_k1, M_k2) of the correction
+        #: called with (S51, S52) in per mille for each label accepted (ignored ones are not
+        #: reported: outside the window, a second label in it)
+        self.on_label: Callable[[float, float], None] | None = None
+        #: correction applied since construction (fraction of the cycle, same sign as the
+        #: deviation; never reset, so a reader can take differences across restarts)
+        self.corrected = 0.0
 
     # ------------------------------------------------------------------ wiring
 
@@ -341,6 +357,8 @@ class LabelSync:
         self.s51 = 1000.0 * phase(X, 1.0)
         self.s52 = 1000.0 * deviation
         self._total = self.correction.set(deviation)
+        if self.on_label is not None:
+            self.on_label(self.s51, self.s52)
 
     def step(self, U: float) -> float:
         """This cycle's share of the correction; returns the slave set-point change (units)."""
@@ -350,10 +368,13 @@ class LabelSync:
         if not self._running():
             return 0.0
         before = self.correction.applied
+        # L11: master related, the correction moves the master it is spread over
+        self.correction.in_phase = self.mode == 1
         self.correction.step(op.chain.fraction)
         amount = self.correction.applied - before  # same sign as the deviation
         if amount == 0.0:
             return 0.0
+        self.corrected += amount
         if self.mode == 1:
             # L1: into the master integrator; the frame (the master position) shows it next cycle
             op.chain.inject(-amount * op.chain.scaled_cycle)

@@ -43,6 +43,21 @@ values. Reads (F/I/B<address>, P<n>, S<n>) are always answered; every write (mem
 parameters, VF, VP, RESETF, SETC, LOOP, ...) is refused with the device's error reply
 (``!E104`` for memory and parameters, ``!E107`` for commands) unless the operator enabled
 network writes (``serve --allow-writes``); a refused or wrong line changes nothing.
+
+Scope channels come from `trace_channels()` (the machine adds them with its own: all of them
+with trace.channels = "all", or those named): compax.S44, S45, S52 (per mille), O14 ... O16,
+state, A0 / A1 (V). The label records come from the public `LabelSync.on_label` hook and
+`LabelSync.corrected` (label.py).
+
+Decisions (each has a test in tests/devices/compax/test_personality.py):
+
+* P1 The two analogue aux channels (compax.md §2.1 "Additionally there can be put out 2 analogue
+  signals within +/- 10V", §2.12 "The analogue auxiliary functions are always prepared
+  independently from I15", §7 X22 "volt = signed_byte·10/128"): the machine has no analogue
+  I/O image ([io] is digital), so they are not wired to machine outputs; they are exposed as
+  the scope channels compax.A0 / compax.A1 and in `summary()["analog"]`, in volts at the X22
+  scaling (gain 100: 127 ≙ 9.92 V, -128 ≙ -10 V), 0 V without a selected curve or without
+  analogue aux values. Test: test_analog_aux_channels_in_the_scope_and_the_summary.
 """
 
 from __future__ import annotations
@@ -60,7 +75,7 @@ from axisline.devices.base import Personality
 from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, CompaxError
 from axisline.devices.compax.ascii import MAX_LINE, AsciiEndpoint
 from axisline.devices.compax.cammemory import MAX_CURVES, MAX_POINTS_PER_CURVE, CamMemory
-from axisline.devices.compax.camop import CamOperation, CamState
+from axisline.devices.compax.camop import CamOperation, CamState, analog_volts
 from axisline.devices.compax.curves import (
     CurveRecord,
     curve_from_cam,
@@ -220,7 +235,7 @@ class CompaxConfig(BaseModel):
     label_tolerance: float = Field(
         10.0, gt=0.0, le=500.0, description="label error (per mille of the cycle) the report counts as converged"
     )
-    trace: bool = Field(True, description="add the compax.* channels to the scope when it records all channels")
+    trace: bool = Field(True, description="offer the compax.* scope channels (trace.channels = all, or by name)")
 
     @field_validator("parameters")
     @classmethod
@@ -340,30 +355,6 @@ class CompaxEndpoint(AsciiEndpoint):
         return super()._dispatch(text)
 
 
-class _Label(LabelSync):
-    """LabelSync that tells the personality which labels it accepted and what it corrected."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.accepted: list[tuple[float, float]] = []
-        self.amount = 0.0  # correction applied since the personality last looked (fraction of the cycle)
-
-    def _label(self, X: float) -> None:
-        old = self.s52
-        self.s52 = math.nan  # stays NaN when the label is ignored (outside the window, a second one)
-        super()._label(X)
-        if math.isnan(self.s52):
-            self.s52 = old
-        else:
-            self.accepted.append((self.s51, self.s52))
-
-    def step(self, U: float) -> float:
-        before = self.correction.applied
-        out = super().step(U)
-        self.amount += self.correction.applied - before
-        return out
-
-
 # ---------------------------------------------------------------------------------------
 # the personality
 
@@ -411,7 +402,10 @@ class CompaxPersonality(Personality):
         assert unit is not None and self.params is not None and self.memory is not None
         self.unit = unit
         self.axis = unit.axis
-        self.label = _Label()
+        self.label = LabelSync()
+        self._accepted: list[tuple[float, float]] = []  # labels of the cycle (S51, S52)
+        self.label.on_label = lambda s51, s52: self._accepted.append((s51, s52))
+        self._corrected = 0.0  # label.corrected when the log last took it
         wiring: dict[str, Any] = {"I12": True}
         wiring.update({name: self._signal(value) for name, value in config.inputs.items()})
         self.wiring = wiring
@@ -542,13 +536,8 @@ class CompaxPersonality(Personality):
         return params
 
     def _signal(self, value: bool | str) -> Any:
-        if isinstance(value, bool):
-            return value
-        sensor = self.machine.sensors.get(value)
-        if sensor is not None:
-            return lambda: sensor.state
-        machine = self.machine
-        return lambda: machine.io.read(value)  # the machine builds its io after the personality
+        """A wired input: a constant, or a function reading a sensor or an io input."""
+        return self.machine.signal(value)
 
     def _sensor(self, value: bool | str | None) -> Any:
         if isinstance(value, str):
@@ -570,34 +559,34 @@ class CompaxPersonality(Personality):
             self._edge_seen[sensor.name] = out[-1].time
         return out
 
-    def _add_trace_channels(self) -> None:
-        m = self.machine
-        trace = getattr(m, "trace", None)
-        if trace is None or not self.config.trace or m.config.trace.channels != "all":
-            return
-        op = self.op
-        for name, getter, unit, kind in (
-            ("compax.S44", lambda: op.chain.s44, "per mille", float),
-            ("compax.S45", lambda: op._s45, "per mille", float),
-            ("compax.S52", lambda: self.label.s52, "per mille", float),
-            ("compax.O14", lambda: op.output(14), "", bool),
-            ("compax.O15", lambda: op.output(15), "", bool),
-            ("compax.O16", lambda: op.output(16), "", bool),
-            ("compax.state", lambda: _STATE_CODE[op.state], "", int),
-        ):
-            if name in trace.channels:
-                continue
-            try:
-                trace.add_channel(name, getter, unit=unit, kind=kind)
-            except RuntimeError:  # the scope has started recording: it keeps its channels
-                return
+    def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
+        """compax.* scope channels (device.trace = false: none); the machine adds them when the
+        scope records all channels, or those named in trace.channels."""
+        if not self.config.trace:
+            return {}
+        op, label = self.op, self.label
+        return {
+            "compax.S44": (lambda: op.chain.s44, "per mille", float),
+            "compax.S45": (lambda: op._s45, "per mille", float),
+            "compax.S52": (lambda: label.s52, "per mille", float),
+            "compax.O14": (lambda: op.output(14), "", bool),
+            "compax.O15": (lambda: op.output(15), "", bool),
+            "compax.O16": (lambda: op.output(16), "", bool),
+            "compax.state": (lambda: _STATE_CODE[op.state], "", int),
+            "compax.A0": (lambda: self.analog_volts(0), "V", float),
+            "compax.A1": (lambda: self.analog_volts(1), "V", float),
+        }
+
+    def analog_volts(self, channel: int) -> float:
+        """Analogue aux channel 0 / 1 (the curve's analogue aux function at the master position,
+        interpolated, independent of I15) in volts: signed byte · 10 V / 128 (P1 in docs/compax.md)."""
+        return analog_volts(self.op.analog(channel))
 
     def tick(self, cycle: int) -> None:
         op = self.op
         t = cycle * self.period
         if self._first:
             self._first = False
-            self._add_trace_channels()
             self.log.start(t)
         self._run_program(cycle)
         fresh: dict[str, list[Any]] = {}
@@ -624,16 +613,16 @@ class CompaxPersonality(Personality):
         log = self.log
         label = self.label
         curve = op.curve
-        if label.accepted:
+        if self._accepted:
             length = 0.0
             if curve is not None:
                 length = curve.slave_cycle * op.p36 if label.mode == 2 else curve.master_cycle
-            for s51, s52 in label.accepted:
+            for s51, s52 in self._accepted:
                 log.label(t, s51, s52, length)
-            label.accepted.clear()
-        if label.amount:
-            log.correction(1000.0 * label.amount)
-            label.amount = 0.0
+            self._accepted.clear()
+        if label.corrected != self._corrected:
+            log.correction(1000.0 * (label.corrected - self._corrected))
+            self._corrected = label.corrected
         log.tracking(self.axis.following_error)
         log.outputs(t, op.output(15), op.output(16))
         wraps = op.chain.wraps if curve is not None else 0
@@ -731,6 +720,7 @@ class CompaxPersonality(Personality):
             "curve": int(op.status(43)) if op.curve is not None else None,
             "loop_active": op.loop_active,
             "outputs": {f"O{n}": op.output(n) for n in range(7, 17)},
+            "analog": {"A0": self.analog_volts(0), "A1": self.analog_volts(1)},  # volts (P1)
             "status": self.status_values(),
             "program": {
                 "lines": len(self.program),
