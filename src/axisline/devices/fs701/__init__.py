@@ -11,6 +11,7 @@ Register side (this package's data modules):
                  EEPROM store, Modbus holding-register map
     drivecom     the serial protocol (Drivecom after ISO 1745): `DrivecomEndpoint`, client helpers
     paramfile    parameter files (TOML), atomic save, validated load, compare
+    lcd          the MC720 terminal's LCD windows over the process values (spec §5.4, E23)
 
 The modules are imported on demand; importing the package itself loads nothing heavy.
 """

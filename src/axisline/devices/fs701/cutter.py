@@ -97,8 +97,14 @@ each has a test in tests/devices/fs701/test_cutter*.py):
  C10 Length counter at Start (spec §2.14, §8 item 13): Start keeps the material counted since
     the last cut (an Immediate Cut in Stop followed by Start gives a first piece of exactly
     the Cutting Length, manual §7.5) unless Set Length Cou (Ps) or (LU) is non-zero; then
-    the counter is set to it (Ps wins if both are set) and both registers are cleared.
-    Test: test_set_length_counter_*.
+    the counter is set to it and both registers are cleared. Precedence (spec §2.14 "Precedence
+    if both are non-zero is unspecified", §8 item 13): Set Length Cou (Ps) wins. It is the
+    exact value (line increments, no scaling through Pulses Line / 1000), the manual lists it
+    first and describes the LU register "As above, but scaled in Length units", and a PLC that
+    writes increments has computed the remainder from the counter itself. The LU value is
+    discarded, not kept for a later Start ("set value only used one time" applies to the
+    function, so a stale LU preset cannot surprise the operator at the next Start). Tests:
+    test_set_length_counter_*, test_set_length_counter_ps_wins_over_lu_through_the_registers.
  C11 Stop during a cut cycle: a running cycle is completed (the blade may be in the material),
     then the carriage is held at home; no new automatic cycle starts.
     Test: test_stop_during_cycle_completes_it_c11.
@@ -804,6 +810,7 @@ class Cutter:
         self.max_pos_error = 0.0
         self.car_travel_dist = 0.0  # increments, forward excursion of the last cycle
         self.set_length_counter_consumed = False
+        self.test_counter = 0  # #31: cycles of the Test program (status.py decision; personality sets it)
         self._jog_dir = 0
         self.feasible_next = True
         self.cut_log: list[CutInfo] = []  # every cut that reached Ready to Cut (for reports)
@@ -881,7 +888,9 @@ class Cutter:
             15: self.waste_counter,
             29: int(self.control_state),
             30: int(self.cut_state),
+            31: self.test_counter,
         }
+        # #11, #25..#28: unused slots, the status image keeps them 0 (status.py decision)
         pv.update(self.printmarks.process_values())
         return pv
 

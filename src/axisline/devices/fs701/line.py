@@ -36,6 +36,11 @@ Decisions:
     measured on the controller's own master.
  M4 Print-mark cuts: the offset to the nearest mark's active edge (leading edge with Printmark
     Edge 0, trailing with 1) on the material; checked against `mark_tolerance`.
+ M5 Additional cuts (Cutting Mode 3) are not at a mark: they are measured and checked like
+    length cuts (the piece since the previous cut against the FIFO's piece length: the tail,
+    Add. Cut 3/2 Length), never against the nearest mark (`cut(..., at_mark=False)`); the cut
+    on the trigger mark itself is a print-mark cut (M4). Test (machine level):
+    test_cutting_mode_3_cuts_the_additional_pieces_before_each_mark.
 """
 
 from __future__ import annotations
@@ -155,6 +160,7 @@ class CutMeter:
         target_length: float | None,
         line_speed_measured: float,
         following_error: float,
+        at_mark: bool = True,
     ) -> CutMeasurement:
         x, v, a = self.material()
         point = x - self.tool()
@@ -182,7 +188,7 @@ class CutMeter:
             following_error_lu=following_error / kc,
             material_point=point,
         )
-        if self.marks is not None:
+        if self.marks is not None and at_mark:
             off = self.marks(point)
             if off is not None:
                 rec.mark_offset = off

@@ -57,7 +57,17 @@ Decisions:
  D4 The Adjust program (§7: direction check, offset, gain) runs before the first cycle with the
     carriage disconnected from the line, on the carriage's plant drive; the carriage is then put
     back at its start position. Its results (Ana-Out Offset 2, Gain 2) go into the parameter set
-    and the EEPROM image. The Adjust / Test Program command bits 30/31 have no further effect.
+    and the EEPROM image. At runtime the serial / bus command bits 30 "Adjust Program" and 31
+    "Test Program" (manual §4.1.1 "Control Enable must be OFF"; registers.py refuses the
+    write while Control Enable is ON, or while the other program's bit is set) start, on their
+    rising edge in All Commands, the Adjust program (direction check, Ana-Out Offset 2, Gain 2:
+    new values into the parameter set, not the EEPROM until "Store to EEProm") or the Test
+    program (the §7.4 "Cycle": TEST_PROGRAM_CYCLES up/down ramps at the adjust speed; process
+    value #31 "Test Counter" = the cycles completed, reset when it is entered). Each runs to its
+    end within that cycle on the carriage's plant drive (simulated time of the procedure is
+    not added to the machine's clock); the carriage is then back where it stood, unpowered.
+    Holding the bit does not repeat it; clear and set it again. A rising edge with Control
+    Enable ON (only possible from the CAN word) is logged as refused in `programs`.
  D5 Process values and status words are refreshed from the cutter when a protocol reads them
     (at a cycle boundary), not every cycle.
  D6 persist() (serve's shutdown) writes the live parameter set, counters and I/O assignment to
@@ -79,7 +89,7 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_vali
 from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
 
-from .cutter import _WASTE, CutInfo, Cutter, CutState, CutterInputs, CutterSettings
+from .cutter import _WASTE, CutInfo, CutKind, Cutter, CutState, CutterInputs, CutterSettings
 from .drivecom import DrivecomEndpoint
 from .io_assign import (
     HW_INPUTS,
@@ -93,7 +103,7 @@ from .io_assign import (
     output_signal,
 )
 from .line import BatchJob, CommissioningReport, CutMeasurement, CutMeter, Shear, batch_statistics
-from .loop import direction_check, tune_gain, tune_offset
+from .loop import cycle_test, direction_check, tune_gain, tune_offset
 from .parameters import ParameterError, ParameterSet, parameter
 from .paramfile import ParamFileError, load_parameter_file, save_parameters
 from .registers import RegisterMap, modbus_read, modbus_write, ModbusError
@@ -112,6 +122,11 @@ SCALE_TOLERANCE = 0.02  # D1
 _INT32 = (-(2**31), 2**31 - 1)
 _INPUT_FIELD = {"select_virmaster": "select_vir_master"}  # io_assign attr -> CutterInputs field
 _CUTTER_INPUTS = {f.name for f in fields(CutterInputs)}
+_BIT_CE = 1 << 0  # Control Enable
+_BIT_ADJUST = 1 << 30  # Adjust Program (serial / bus only)
+_BIT_TEST = 1 << 31  # Test Program (serial / bus only)
+ADJUST_STEPS = (("direction", direction_check), ("offset", tune_offset), ("gain", tune_gain))
+TEST_PROGRAM_CYCLES = 2  # up/down cycles the Test program runs per start (#31 Test Counter)
 
 
 class ShearConfig(BaseModel):
@@ -377,6 +392,9 @@ class Fs701Personality(Personality):
             (f.mask, _INPUT_FIELD.get(f.attr, f.attr)) for f in INPUT_FUNCTIONS if _INPUT_FIELD.get(f.attr, f.attr) in _CUTTER_INPUTS
         )
         self._pm_inverted = PRINT_MARK_INPUT in io.inverted_inputs
+        self._program_word = 0  # All Commands bits 30/31 seen last cycle (D4)
+        #: runtime Adjust / Test programs started by command bits 30/31 (D4)
+        self.programs: list[dict[str, Any]] = []
 
     # ------------------------------------------------------------------ construction helpers
 
@@ -521,6 +539,7 @@ class Fs701Personality(Personality):
         c = Cutter(self.unit.axis, s, line=self._line_encoder, period=self.period)
         if old is not None:
             c.zero = old.zero
+            c.test_counter = old.test_counter
         c.on_cut = self._on_ready
         return c
 
@@ -530,6 +549,18 @@ class Fs701Personality(Personality):
 
     def _commission(self) -> None:
         """D4: the Adjust program on the disconnected carriage, then the carriage back home."""
+        rep = self.commissioning
+        rep.ran = True
+        steps, ok = self._run_on_carriage(ADJUST_STEPS)
+        rep.steps += steps
+        rep.ok = ok
+        if not ok:
+            self.machine.faults.append(f"fs701 commissioning: {steps[-1]['message']}")
+
+    def _run_on_carriage(self, steps: tuple[tuple[str, Callable[..., Any]], ...]) -> tuple[list[dict[str, Any]], bool]:
+        """Run Adjust / Test procedures (loop.py) on the carriage's plant drive, then put the
+        carriage back where it stood, unpowered (Control Enable is OFF). Returns the step
+        records and whether all passed; Ana-Out Offset 2 / Gain 2 go into the parameter set."""
         s = self.settings
         drive = self.unit.drive
         start = drive.position
@@ -539,17 +570,13 @@ class Fs701Personality(Personality):
         def counts() -> int:
             return sign * enc.sample()
 
-        rep = self.commissioning
-        rep.ran = True
-        steps = (("direction", direction_check), ("offset", tune_offset), ("gain", tune_gain))
+        out: list[dict[str, Any]] = []
+        ok = True
         for name, fn in steps:
             r = fn(s, self.period, drive, counts)
-            rep.steps.append({"step": name, "ok": r.ok, "message": r.message})
-            if not r.ok:
-                rep.ok = False
-                break
-            if name == "direction" and r.dir_counter_2 != s.dir_counter_2:
-                rep.ok = False
+            out.append({"step": name, "ok": r.ok, "message": r.message, "iterations": r.iterations})
+            if not r.ok or (name == "direction" and r.dir_counter_2 != s.dir_counter_2):
+                ok = False
                 break
         drive.command_voltage(0.0)
         drive.reset(start)
@@ -558,8 +585,31 @@ class Fs701Personality(Personality):
         self.unit.actual_position = drive.position
         self.params.set("ana_out_offset_2", int(s.ana_out_offset_2))
         self.params.set("ana_out_gain_2", round(float(s.ana_out_gain_2), 2))
-        if not rep.ok:
-            self.machine.faults.append(f"fs701 commissioning: {rep.steps[-1]['message']}")
+        return out, ok
+
+    def _service_programs(self, cycle: int, word: int) -> None:
+        """D4: serial / bus command bits 30 "Adjust Program" and 31 "Test Program" (rising edge
+        of All Commands, Control Enable OFF) run the Adjust program / the cycle test now."""
+        rising = word & ~self._program_word
+        self._program_word = word
+        if not rising & (_BIT_ADJUST | _BIT_TEST):
+            return
+        t = round(cycle * self.period, 6)
+        if word & _BIT_CE:  # the registers refuse the serial write; a CAN word is not checked there
+            self.programs.append({"t": t, "program": "refused", "ok": False,
+                                  "steps": [], "message": "Adjust/Test Program needs Control Enable OFF"})
+            return
+        if rising & _BIT_ADJUST and not word & _BIT_TEST:
+            steps, ok = self._run_on_carriage(ADJUST_STEPS)
+            self.programs.append({"t": t, "program": "adjust", "ok": ok, "steps": steps})
+        elif rising & _BIT_TEST and not word & _BIT_ADJUST:
+            self.cutter.test_counter = 0  # entering the Test program resets #31 (status.py)
+            steps, ok = self._run_on_carriage((("cycle", self._cycle_test),))
+            self.cutter.test_counter = int(steps[-1]["iterations"]) if ok else 0
+            self.programs.append({"t": t, "program": "test", "ok": ok, "steps": steps})
+
+    def _cycle_test(self, s: Any, period: float, drive: Any, counts: Callable[[], int]) -> Any:
+        return cycle_test(s, period, drive, counts, cycles=TEST_PROGRAM_CYCLES)
 
     # ------------------------------------------------------------------ the loop (POSITION_LOOP)
 
@@ -587,6 +637,8 @@ class Fs701Personality(Personality):
             self._hw_word = self.registers.io.hardware_command_word(levels)
         self.registers.set_hardware_commands(self._hw_word)
         word = self.registers.status.all_commands
+        if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
+            self._service_programs(cycle, word)
         inp = c.inputs
         for mask, name in self._input_masks:
             setattr(inp, name, bool(word & mask))
@@ -650,6 +702,7 @@ class Fs701Personality(Personality):
             target_length=target,
             line_speed_measured=c.line_speed,
             following_error=c.position_error,
+            at_mark=info is None or info.kind is not CutKind.ADDITIONAL,  # line.py M5
         )
         if rec.in_tolerance is False and self.config.tolerance_fault:
             what = (

@@ -26,8 +26,21 @@ Decisions (spec line -> choice -> why):
   once when cleared while the cause persists; event errors (02, 03, 04) stay cleared.
 * "Output Error" (bit 7 of 0x0B04) is owned by the status image: it is the OR of the errors
   that set it (01..05); the device cannot set or clear it by writing the output word.
-* spec §3.11 process values #11, #25..#28 have no name: reserved, read 0. #31 "Test Counter"
-  is kept (no meaning given). Control State / Cut State codes are the cut cycle's (spec [GAP]).
+* spec §3.11 / §8 item 10 "process values #11, #25-#28, #31": the manual's §4.4 / §11 rows
+  #11 and #25..#28 are blank (no name, unit or explanation) and its process-data screenshot
+  shows every value as "+0000000": they are unused slots of this firmware. They exist (the LCD
+  "Variable Nr." accepts 00..31, spec §5.4), are read only and always read 0; a commissioning
+  engineer who selects one on the LCD sees 0, not a made-up quantity. The §8.2 LCD screenshot
+  labels Nr. 25 "Tension Value" and Nr. 26 "actual Speed": that is the operator software's
+  generic LCD-definition dialog (the FS701 has no tension input and its speed is #2) and is not
+  adopted. Test: test_unnamed_process_values_read_zero_and_are_read_only.
+* spec §3.11 #31 "Test Counter" (named, no explanation): the command with the same number,
+  bit 31 "Test Program", is the only "Test" function of the unit, so #31 counts the up/down
+  cycles the Test program (the §7.4 "Cycle" function: the drive ramps up and down
+  continuously) has completed since it was last entered; entering it resets the counter to 0,
+  leaving it keeps the last count; it is 0 after power-up. Tests:
+  test_test_counter_counts_the_test_program_cycles, test_serial_test_program_runs_the_cycle_test.
+* Control State / Cut State codes are the cut cycle's (spec [GAP]).
 * Process values are 32-bit signed in the unit's registers (7 digits and a sign on the
   screen); `set_process_value` refuses anything outside -2**31..2**31-1 instead of wrapping,
   so a device bug shows up. "Read Batch Count" / "Read Waste Count" (#14/#15) are read by the
