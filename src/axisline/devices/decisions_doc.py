@@ -1,0 +1,68 @@
+"""The device part of docs/decisions.md, collected from the device modules.
+
+Each device module keeps its decisions ("Decisions" list in its module docstring: the spec
+line, the choice, why, the test) next to the code they govern. This renders them into the
+"## Device personalities" section of docs/decisions.md, so the document cannot drift from
+the code: `python -m axisline.devices.decisions_doc docs/decisions.md` rewrites the section,
+and tests/test_decisions_doc.py fails when it is stale.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+from pathlib import Path
+
+MARKER = "## Device personalities"
+
+_DEVICES = (
+    ("FS701 flying shear / saw (issue 4)", "fs701"),
+    ("COMPAX cam controller (issue 5)", "compax"),
+    ("WAGO 750-672 stepper module (issue 6)", "wago672"),
+)
+
+
+def _decisions(path: Path) -> str | None:
+    doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or ""
+    at = doc.find("Decision")
+    return doc[at:].strip() if at >= 0 else None
+
+
+def render(package: Path | None = None) -> str:
+    root = package or Path(__file__).resolve().parent
+    out = [
+        MARKER,
+        "",
+        "Each device module keeps its decisions in a \"Decisions\" list in its module docstring, next to the",
+        "code they govern; this section is generated from them (`python -m axisline.devices.decisions_doc",
+        "docs/decisions.md`). Every entry names the spec line it resolves and the test that holds it (test",
+        "names are in the entries or in the test files of the same module).",
+        "",
+    ]
+    for title, name in _DEVICES:
+        blocks = []
+        for path in sorted((root / name).glob("*.py")):
+            text = _decisions(path)
+            if text:
+                blocks += [f"#### `axisline/devices/{name}/{path.name}`", "", text, ""]
+        if blocks:
+            out += [f"### {title}", ""] + blocks
+    return "\n".join(out).rstrip() + "\n"
+
+
+def update(doc: Path) -> bool:
+    """Rewrite the device section of `doc`; True if it changed."""
+    text = doc.read_text(encoding="utf-8")
+    at = text.find(MARKER)
+    head = text if at < 0 else text[:at]
+    new = head.rstrip() + "\n\n" + render()
+    if new == text:
+        return False
+    from ..kernel import atomic_write_text
+
+    atomic_write_text(doc, new)
+    return True
+
+
+if __name__ == "__main__":  # pragma: no cover
+    print("updated" if update(Path(sys.argv[1])) else "unchanged")
