@@ -163,6 +163,8 @@ def test_software_limit_e25_stops_and_blocks_master_counting():
     # §7 X3 / §2.4: "when reaching the limits, the slave will be stopped, the cam operation will be
     # interrupted, the counting impulses at the encoder input will be disabled, ... E25"
     rig = Rig({1: line()}, P93=1, P11=500.0, P12=-100.0)
+    rig.op.posa_home()  # D20: the machine datum first
+    rig.step(2)
     rig.op.setc(1)
     rig.op.setm(0.0)
     rig.op.loop(0)

@@ -24,6 +24,8 @@ VF                         declare the cam memory valid             -
 SETC n, SETM x, SETS,      cam commands, to the `CamCommands`       -
 POSR CAM, LOOP m           handler (short forms SC, SM, SS, PR, LP;
                            n, x, m may be .P40 ... .P49)
+POSA HOME                  machine datum travel (also during        -
+                           cam operation, §2.11 exception)
 P31=2 / P31                write / read a parameter                 P031=2
 VP, VC, RESETP             parameter acceptance / reset             -
 S44                        read a status value                      S044=350.000
@@ -225,6 +227,14 @@ class AsciiEndpoint:
         if line in ("POSRCAM", "PR"):
             self._call(self._handler(text).posr_cam)
             return ""
+        if line == "POSAHOME":  # machine datum travel, also during cam operation (§2.11 exception)
+            handler = self._handler(text)
+            home = getattr(handler, "posa_home", None)
+            if not callable(home):
+                raise CompaxError(f"{text.strip()!r}: the attached cam operation has no machine datum travel",
+                                  code=E_NOT_AVAILABLE, field="command", value=text)
+            self._call(home)
+            return ""
         match = _RE_MEMORY.fullmatch(line)
         if match:
             return self._memory(text, Fmt(match[1]), int(match[2]), match[3])
@@ -241,7 +251,7 @@ class AsciiEndpoint:
             self._cam(text, match[1], match[2])
             return ""
         raise _syntax(text, "not a command of this interface (F/I/B<address>[=value], RESETF, VF, SETC, SETM, "
-                            "SETS, POSR CAM, LOOP, P<n>[=value], VP, VC, RESETP, S<n>)")
+                            "SETS, POSR CAM, POSA HOME, LOOP, P<n>[=value], VP, VC, RESETP, S<n>)")
 
     def _memory(self, text: str, fmt: Fmt, address: int, value: str | None) -> str:
         if value is None:

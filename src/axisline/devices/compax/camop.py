@@ -150,6 +150,43 @@ wins over the spec; each has a test in tests/devices/compax/test_camop*.py):
 * D16 S47 is the curve set point (curve offset + curve value, device frame) also while
   coupling / decoupling; S45 the curve value in per mille of S_T·P36 (plus the slave-related
   label correction); S2 is the m of the last LOOP in cam operation, else the set point.
+* D20 Machine datum before cam operation (§2.4 "When limit supervision is activated in normal
+  mode after "Power on", normal operation is only initiated once the machine datum has been
+  reached. This also applies for the time between the activation of the machine datum travel
+  until the machine datum is reached."; the manual does not say how the datum is reached nor
+  which error a refused command gives [GAP]): while P11/P12 supervise (P93 = 1 and not both
+  switched off, ±4 000 000) LOOP and POSR CAM are refused with E_NOT_AVAILABLE (107, S30)
+  until the slave axis' homing has finished (`Axis.homed`) since power on; the datum travel is
+  POSA HOME (`posa_home`, ASCII "POSA HOME", Shift I2) or any axis homing; during the travel
+  (HOMING) the datum counts as not reached. Reset mode (P93 = 3, "supervision ineffective as the
+  datum is never reached"), endless mode and switched-off limits need no datum. The travel is
+  `homing` (a `HomingProcedure`, default `DirectHoming(0)`: the datum where the slave stands,
+  for a rig without a reference switch). Tests: test_limit_supervision_in_normal_mode_needs_the_
+  machine_datum, test_datum_not_reached_during_the_datum_travel,
+  test_no_datum_needed_without_supervision (test_camop_datum.py).
+* D21 POSA HOME / Shift I2 during cam operation (§2.11 "Exception: If the curve commands are
+  specified via an interface (not as a set command), COMPAX also reacts during the cam
+  operation to the command "POSA HOME" or Shift I2"): given over the interface (ASCII line
+  "POSA HOME", blanks ignored; `posa_home()`) or by Shift I2 (inputs I1 = Shift and I2 both 1,
+  rising edge, the COMPAX standard assignment [DERIVED]; read only when "I2" is wired) the LOOP
+  is left (O16 = 0, the outputs freeze as on STOP), the slave brakes on its ramp and the datum
+  travel starts at standstill. As a set command (`posa_home(interface=False)`) it is refused
+  during cam operation like the other commands (D11, E_NOT_AVAILABLE). Tests:
+  test_posa_home_during_cam_operation_over_the_interface,
+  test_posa_home_as_a_set_command_is_refused_during_cam_operation,
+  test_shift_i2_during_cam_operation_starts_the_datum_travel.
+* D22 D/A monitor at power on (manual §13.2 "During the activation (after "Power-On") the
+  analogous output is 10V."): `da_monitor` gives +10 V for every signal and gain from power on
+  (construction) until the first device cycle (`tick`), the end of the activation in axisline
+  (its length on the device is not given [GAP]). Test:
+  test_da_monitor_is_10v_during_the_activation_after_power_on.
+* D23 HEDA not modelled (§2.6 "Process coupling via HEDA (option A1/A3)"): reason: a hardware
+  option (SSI bus, ±2.5 µs time-slice synchronisation, data blocks of a second COMPAX, E76 ...
+  E78 transmission errors) with no second device in axisline to send the process value; a
+  partial model (another axis' data block, the 2 ms delay at P188 > 0) would give results the
+  bus cannot be checked against. A HEDA master (P188 != 0, or P243 bit 1 "passive slave")
+  refuses LOOP with E_NOT_AVAILABLE (107); P31 = 9 with P188 = 0 stays the static I16 enable
+  of the encoder / time base. Test: test_heda_master_is_not_modelled.
 """
 
 from __future__ import annotations
@@ -164,6 +201,7 @@ from axisline.motion.axis import Axis, AxisState, MotionCommand
 from axisline.motion.cam import FRACTION_ONE, PointTable
 from axisline.motion.camsync import smooth_step
 from axisline.motion.camswitch import AuxTrack
+from axisline.motion.homing import DirectHoming, HomingProcedure
 
 __all__ = [
     "CamOperation",
@@ -364,8 +402,16 @@ class CamOperation:
         inputs: dict[str, Any] | None = None,
         master: MasterChain | None = None,
         label: Any = None,
+        homing: HomingProcedure | None = None,
     ) -> None:
         self.axis = axis
+        #: the machine datum travel of POSA HOME / Shift I2 (D20; default: the datum where the slave stands)
+        self.homing: HomingProcedure = homing if homing is not None else DirectHoming(0.0)
+        self._home_pending = False
+        self.home_command: MotionCommand | None = None
+        self._shift_i2 = False
+        #: False from power on until the first cycle ("During the activation ... 10V", D22)
+        self.activated = False
         self.params = params
         self.curves = curves
         self.period = axis.period
@@ -490,6 +536,63 @@ class CamOperation:
             code=E_NOT_AVAILABLE, field=command, allowed="outside cam operation",
         )
 
+    def limits_supervised(self) -> bool:
+        """§2.4: P11/P12 supervise (normal mode P93 = 1, not both switched off)."""
+        if int(param(self.params, 93)) != 1:
+            return False
+        return not (float(param(self.params, 11)) >= 4_000_000 and float(param(self.params, 12)) <= -4_000_000)
+
+    @property
+    def datum_reached(self) -> bool:
+        """The machine datum has been reached since power on (the axis' homing has finished, D20)."""
+        return bool(getattr(self.axis, "homed", False))
+
+    def _datum_check(self, command: str) -> None:
+        """D20 (§2.4): with limit supervision in normal mode, cam operation only after the datum."""
+        if self.limits_supervised() and not self.datum_reached:
+            self.last_error = E_NOT_AVAILABLE
+            raise CompaxError(
+                f"{command} not allowed: software end limits P11/P12 supervise in normal mode (P93 = 1) and the "
+                "machine datum has not been reached since power on (POSA HOME first, §2.4)",
+                code=E_NOT_AVAILABLE, field=command, allowed="after the machine datum (POSA HOME)",
+            )
+
+    def _heda_check(self) -> None:
+        """D23: a HEDA master (slave input quantity P188 > 0, passive HEDA slave P243 bit 1) is not modelled."""
+        p188 = int(param(self.params, 188))
+        p243 = int(param(self.params, 243))
+        if p188 != 0 or p243 & 2:
+            self.last_error = E_NOT_AVAILABLE
+            raise CompaxError(
+                f"LOOP not allowed: the HEDA master (P188 = {p188}, P243 = {p243}, option A1/A3, §2.6) is not "
+                "modelled by axisline; use the encoder (P30 = 0) or the internal time base (P30 = 1)",
+                code=E_NOT_AVAILABLE, field="P188", value=p188, allowed="P188 = 0, P243 bit 1 = 0",
+            )
+
+    def posa_home(self, *, interface: bool = True) -> MotionCommand | None:
+        """POSA HOME: machine datum travel (`self.homing`). During cam operation only when given over
+        the interface (§2.11 "Exception ... POSA HOME or Shift I2", D21): the LOOP is left, the slave
+        brakes (ramp) and the datum travel starts at standstill; a set command (interface=False) is
+        refused there like the other commands (§11.2)."""
+        ax = self.axis
+        if self.loop_active:
+            if not interface:
+                raise self._busy("POSA HOME")
+            self._leave()
+            self._release = False
+            ax.halt()
+        self._home_pending = True
+        self.home_command = None
+        ax.homed = False  # "the time between the activation of the machine datum travel until ... reached"
+        self._start_home()
+        return self.home_command
+
+    def _start_home(self) -> None:
+        ax = self.axis
+        if self._home_pending and ax.state is AxisState.STANDSTILL:
+            self._home_pending = False
+            self.home_command = ax.home(self.homing)
+
     def setc(self, n: int) -> None:
         """SETC n: select curve n (E17 if it is not in the cam memory)."""
         n = _operand(self.params, n)
@@ -554,6 +657,7 @@ class CamOperation:
             raise self._busy("POSR CAM")
         if self.curve is None:
             return None
+        self._datum_check("POSR CAM")
         target = self.curve_value()
         self.posr_target = target
         self.aligned = True
@@ -583,6 +687,8 @@ class CamOperation:
         if int(param(self.params, 93)) == 4:
             raise CompaxError("LOOP not allowed in speed control mode (P93 = 4)", code=E_NOT_AVAILABLE,
                               field="P93", value=4, allowed="1, 2, 3")
+        self._heda_check()
+        self._datum_check("LOOP")
         ax = self.axis
         held = self._release and ax.state is AxisState.SYNCHRONIZED_MOTION  # the LOOP just ended, slave at rest
         self._release = False
@@ -664,8 +770,15 @@ class CamOperation:
     ) -> None:
         """One cycle of device logic, before `axis.update_setpoint(cycle)`."""
         self._cycle = cycle
+        self.activated = True
         ax = self.axis
         chain = self.chain
+        if "I2" in self.inputs:  # Shift I2 (I1 + I2): machine datum travel (D21)
+            shift = self.input("I1") and self.input("I2")
+            if shift and not self._shift_i2:
+                self.posa_home()
+            self._shift_i2 = shift
+        self._start_home()
         i13 = self.input("I13")
         rise13 = i13 and not self._i13
         fall13 = self._i13 and not i13
@@ -1126,6 +1239,8 @@ class CamOperation:
         20/21 analogue aux 0/1 (100 % = 128 LSB ≙ 100 mV), 22 scaled master position (M_T ≙ 100 mV),
         23 scaled slave position (S_T ≙ 100 mV), 24 master speed (20000 min⁻¹ ≙ 10 V), each times
         the gain (P71/P72 for the D1 option)."""
+        if not self.activated:
+            return 10.0  # D22: "During the activation (after "Power-On") the analogous output is 10V."
         curve = self.curve
         if signal in (20, 21):
             return analog_volts(self.analog(signal - 20), gain)

@@ -127,7 +127,7 @@ _PROGRAM_LINES = tuple(
 _MOTION = re.compile(r"LOOP|LP|POSRCAM|PR")
 # writes of the ASCII interface (refused from the network unless writes are enabled)
 _DATA_WRITE = re.compile(r"[IFB]\d+=.*|P\d+=.*")
-_COMMAND = re.compile(r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR|(SETC|SC|SETM|SM|LOOP|LP).+")
+_COMMAND = re.compile(r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR|POSAHOME|(SETC|SC|SETM|SM|LOOP|LP).+")
 _STATUS_READ = re.compile(r"S(\d+)")
 
 
