@@ -5,7 +5,9 @@
 - cycle: cost of one cycle of one axis in a move (median, microseconds), and simulated
   seconds per wall-clock second for a 4-axis machine at T = 1 ms (reference: real time);
 - sync: cost of one cycle of a coupled slave (gear, cam of 2500 points, cam of laws), next
-  to a slave holding still.
+  to a slave holding still;
+- compax: one machine cycle of the COMPAX cam slave on a 2500-point curve, with and without
+  label correction (reference: real time).
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
@@ -19,6 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_cycle import bench_cycle  # noqa: E402
+from bench_compax import bench_compax  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
@@ -31,6 +34,8 @@ def main() -> None:
     bench_cycle()
     print()
     bench_sync()
+    print()
+    bench_compax()
 
 
 if __name__ == "__main__":
