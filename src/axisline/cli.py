@@ -79,6 +79,8 @@ def run(
             task = bar.add_task("run", total=1.0)
             result = m.run(duration, progress=lambda f: bar.update(task, completed=f))
     summary = m.summary(result)
+    if m.device is not None:  # e.g. the FS701's "cuts" and "summary" in the issue's names
+        summary.update(m.device.json_fields(summary.get("device") or {}))
     if report_dir is not None:
         json_out = json_out or report_dir / "summary.json"
         trace_out = trace_out or report_dir / "trace.npz"

@@ -108,6 +108,10 @@ class Personality(ABC):
         """The device's part of the run summary (JSON); `headline` is printed by `run`."""
         return {}
 
+    def json_fields(self, device_summary: dict[str, Any]) -> dict[str, Any]:
+        """Keys the device adds at the top level of `run --json` (beside "device")."""
+        return {}
+
     def trace_channels(self) -> dict[str, tuple[Any, str, type]]:
         """Extra scope channels: name -> (getter, unit, float|int|bool)."""
         return {}
