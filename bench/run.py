@@ -7,7 +7,9 @@
 - sync: cost of one cycle of a coupled slave (gear, cam of 2500 points, cam of laws), next
   to a slave holding still;
 - compax: one machine cycle of the COMPAX cam slave on a 2500-point curve, with and without
-  label correction (reference: real time).
+  label correction (reference: real time);
+- fs701: the flying shear line of examples/flying_shear.toml after commissioning, simulated
+  seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time).
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
@@ -22,6 +24,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_cycle import bench_cycle  # noqa: E402
 from bench_compax import bench_compax  # noqa: E402
+from bench_fs701 import bench_fs701  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
@@ -34,6 +37,8 @@ def main() -> None:
     bench_cycle()
     print()
     bench_sync()
+    print()
+    bench_fs701()
     print()
     bench_compax()
 

@@ -171,3 +171,13 @@ def test_cam_check_reports_maxima_and_the_largest_master_speed(tmp_path):
     assert res.exit_code == 1 and "NO" in res.output
     res = runner.invoke(app, ["cam", str(EXAMPLES / "cam_sync.toml"), "nope", "--master-speed", "1"])
     assert res.exit_code == 2
+
+
+def test_fs701_envelope_command_says_one_metre_at_60_m_min_with_a_1_s_cut_is_not_feasible(tmp_path):
+    # manual §10 (fs701.md §5.6): 1 m at 60 m/min with a 1 s cut is not feasible
+    params = EXAMPLES / "params" / "fs701_params.toml"
+    res = runner.invoke(app, ["fs701", "envelope", str(params), "--cut-time", "1.0", "--speeds", "60000", "--png", str(tmp_path / "e.png")])
+    assert res.exit_code == 0, res.output
+    row = next(line for line in res.output.splitlines() if line.strip().startswith("60000"))
+    assert " NO " in row
+    assert (tmp_path / "e.png").read_bytes()[:4] == b"\x89PNG"

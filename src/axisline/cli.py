@@ -213,6 +213,23 @@ def cam(
     raise typer.Exit(0 if r.within_limits else 1)
 
 
+fs701_app = typer.Typer(no_args_is_help=True, help="motrona FS701 flying shear tools.")
+app.add_typer(fs701_app, name="fs701")
+
+
+@fs701_app.command("envelope")
+def fs701_envelope(
+    params: Path = typer.Argument(..., help="FS701 parameter file (TOML)"),
+    png: Optional[Path] = typer.Option(None, "--png", help="write the envelope plot here"),
+    cut_time: Optional[float] = typer.Option(None, "--cut-time", help="s from Ready to Cut to Cut completed"),
+    speeds: Optional[str] = typer.Option(None, "--speeds", help="line speeds LU/min, comma separated"),
+) -> None:
+    """Shortest cut length per line speed for the configured ramps and cut time (manual §10)."""
+    from .devices.fs701.envelope import envelope_command
+
+    raise typer.Exit(envelope_command(params, png, cut_time, speeds))
+
+
 compax_app = typer.Typer(help="COMPAX XX70 tools.", no_args_is_help=True)
 app.add_typer(compax_app, name="compax")
 

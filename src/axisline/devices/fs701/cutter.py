@@ -235,6 +235,10 @@ class CutState(IntEnum):
     JOG = 9
 
 
+#: the states in which the carriage runs synchronous with the blade down or coming (Ready to Cut)
+_SYNC_STATES = frozenset((CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED))
+
+
 class CutKind(IntEnum):
     NORMAL = 0  # Cutting Length (length mode)
     TEST = 1  # Test Cut. Length (waste)
@@ -912,7 +916,7 @@ class Cutter:
         ax.position_loop(actual_position, actual_velocity)
         if not ax.powered:
             return self.loop.off()
-        sync_phase = self.cut_state in (CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED)
+        sync_phase = self.cut_state in _SYNC_STATES
         return self.loop.update(
             ax.command_position,
             ax.command_velocity,
@@ -994,7 +998,7 @@ class Cutter:
         cc_edge = (inp.cut_completed and not prev.cut_completed) if s.edge_sense == 0 else (
             prev.cut_completed and not inp.cut_completed
         )
-        if cc_edge and self.cut_state in (CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED):
+        if cc_edge and self.cut_state in _SYNC_STATES:
             self._cut_completed_latched = True
 
         self._setpoint(cycle)
@@ -1002,24 +1006,27 @@ class Cutter:
         self._finish_tick()
 
     def _finish_tick(self) -> None:
-        inp, prev = self.inputs, self._prev_in
-        for name in _INPUT_NAMES:
-            setattr(prev, name, getattr(inp, name))
+        inp = self.inputs
+        # the levels of this tick for the next one's edges (CutterInputs: plain fields only)
+        self._prev_in.__dict__.update(inp.__dict__)
         self._first_tick = False
         o = self.outputs
-        o.error = self.errors != 0
+        errors = self.errors
+        ax = self.axis
+        st = self.cut_state
+        o.error = errors != 0
         o.max_correction = self.loop.at_max_correction
-        o.home = abs(self.axis.actual_position - self.home_position) <= self.settings.home_window and self.axis.powered
-        o.gap_completed = self.cut_state is CutState.GAP_COMPLETED
-        o.ready_to_cut = self.cut_state in (CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED)
+        o.home = abs(ax.actual_position - self.home_position) <= self.settings.home_window and ax.powered
+        o.gap_completed = st is CutState.GAP_COMPLETED
+        o.ready_to_cut = st in _SYNC_STATES
         self.printmarks.outputs(o)
         self.control_state = (
             ControlState.DISABLED
-            if not self.inputs.control_enable
+            if not inp.control_enable
             else ControlState.ERROR
-            if self.errors
+            if errors
             else ControlState.AUTOMATIC
-            if self.inputs.start_stop
+            if inp.start_stop
             else ControlState.STOP
         )
 

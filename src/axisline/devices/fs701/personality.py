@@ -391,6 +391,8 @@ class Fs701Personality(Personality):
         self._input_masks = tuple(
             (f.mask, _INPUT_FIELD.get(f.attr, f.attr)) for f in INPUT_FUNCTIONS if _INPUT_FIELD.get(f.attr, f.attr) in _CUTTER_INPUTS
         )
+        #: All Commands word -> {cutter input field: level} (tick: one dict update per cycle)
+        self._input_values: dict[int, dict[str, bool]] = {}
         self._pm_inverted = PRINT_MARK_INPUT in io.inverted_inputs
         self._program_word = 0  # All Commands bits 30/31 seen last cycle (D4)
         #: runtime Adjust / Test programs started by command bits 30/31 (D4)
@@ -639,9 +641,13 @@ class Fs701Personality(Personality):
         word = self.registers.status.all_commands
         if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
             self._service_programs(cycle, word)
-        inp = c.inputs
-        for mask, name in self._input_masks:
-            setattr(inp, name, bool(word & mask))
+        # the cutter's inputs from All Commands: one precomputed field table per word seen
+        values = self._input_values.get(word)
+        if values is None:
+            if len(self._input_values) > 1024:
+                self._input_values.clear()
+            values = self._input_values[word] = {name: bool(word & mask) for mask, name in self._input_masks}
+        c.inputs.__dict__.update(values)
         if self.mark_sensor is not None:
             self._feed_marks(c)
         c.tick(cycle)

@@ -9,6 +9,11 @@ DIR`) gets for an FS701 machine; `write_plots(device_summary, trace_data, out_di
                              cut instants
     fs701_carriage.png       carriage position and velocity (set point and actual) against the
                              line speed, and the FS701's position error with the Cut Window
+    fs701_cycle.png          one cut cycle (the last complete one in the trace): line speed and
+                             carriage speed, and the position error, Ready to Cut -> Cut
+                             completed shaded (needs fs701.ready_to_cut; fs701.cut_state and
+                             fs701.cut_completed refine the window)
+    fs701_error_histogram.png  histogram of the length errors (carriage increments)
 
 The plots that need the scope use its channels (material.speed, <carriage>.command_position,
 <carriage>.actual_position, <carriage>.command_velocity, <carriage>.actual_velocity,
@@ -230,7 +235,115 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
         fig.savefig(path, dpi=90)
         plt.close(fig)
         written.append(path)
+
+    # 4. one cut cycle
+    if t is not None:
+        p = _cycle_plot(plt, d, data, t, out / "fs701_cycle.png")
+        if p is not None:
+            written.append(p)
+
+    # 5. histogram of the length errors
+    errs = [c["error_counts"] for c in cuts if c.get("error_counts") is not None]
+    if errs:
+        fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+        n_bins = max(5, min(40, int(np.sqrt(len(errs))) * 2))
+        ax.hist(errs, bins=n_bins, color="tab:green", edgecolor="black", linewidth=0.5)
+        v = tol["constant_speed_counts"]
+        ax.axvline(v, color="tab:red", linestyle="--", linewidth=1, label="tolerance (constant speed)")
+        ax.axvline(-v, color="tab:red", linestyle="--", linewidth=1)
+        ax.set_xlabel("length error [carriage increments]")
+        ax.set_ylabel("pieces")
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+        ax.set_title(f"length errors of {len(errs)} pieces: mean {np.mean(errs):.2f}, std {np.std(errs):.2f} increments")
+        path = out / "fs701_error_histogram.png"
+        fig.savefig(path, dpi=90)
+        plt.close(fig)
+        written.append(path)
     return written
+
+
+def _rising(x: np.ndarray) -> np.ndarray:
+    x = np.asarray(x).astype(bool)
+    return np.flatnonzero(x[1:] & ~x[:-1]) + 1
+
+
+def cycle_window(data: Mapping[str, np.ndarray]) -> tuple[int, int, int, int] | None:
+    """(start, ready, completed, end) sample indices of the last complete cut cycle: from the
+    approach start (Cut State leaves HOME) over Ready to Cut and Cut completed to home again.
+    Without fs701.cut_state: +-1 Ready-to-Cut duration around the synchronous phase."""
+    if "fs701.ready_to_cut" not in data:
+        return None
+    rtc = np.asarray(data["fs701.ready_to_cut"]).astype(bool)
+    n = len(rtc)
+    rises = _rising(rtc)
+    falls = np.flatnonzero(~rtc[1:] & rtc[:-1]) + 1
+    for r in rises[::-1]:
+        after = falls[falls > r]
+        if len(after) == 0:
+            continue
+        f = int(after[0])  # Ready to Cut LOW: Cut completed received
+        if "fs701.cut_completed" in data:
+            cc = np.asarray(data["fs701.cut_completed"]).astype(bool)
+            e = [i for i in range(int(r), f + 1) if cc[i] != cc[i - 1]]
+            if e:
+                f = e[0]
+        if "fs701.cut_state" in data:
+            cs = np.asarray(data["fs701.cut_state"]).astype(int)
+            home = 1
+            s0 = int(r)
+            while s0 > 0 and cs[s0 - 1] != home:
+                s0 -= 1
+            e0 = f
+            while e0 < n - 1 and cs[e0] != home:
+                e0 += 1
+            if cs[e0] != home:
+                continue  # the return is not complete in the trace
+            s0 = max(s0 - max((e0 - s0) // 10, 1), 0)
+            e0 = min(e0 + max((e0 - s0) // 10, 1), n - 1)
+        else:
+            span = max(f - int(r), 1)
+            s0, e0 = max(int(r) - span, 0), min(f + span, n - 1)
+        return s0, int(r), f, e0
+    return None
+
+
+def _cycle_plot(plt: Any, d: Mapping[str, Any], data: Mapping[str, np.ndarray], t: np.ndarray, path: Path) -> Path | None:
+    w = cycle_window(data)
+    if w is None:
+        return None
+    s0, r, f, e0 = w
+    sl = slice(s0, e0 + 1)
+    tt = t[sl]
+    lu = d["length_unit"]
+    car = d["carriage"]
+    fig, rows = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5), constrained_layout=True)
+    ax = rows[0]
+    if "material.speed" in data:
+        ax.plot(tt, np.asarray(data["material.speed"])[sl] * 60.0, label="line (plant)", color="black", linestyle="--", linewidth=1.0)
+    if "fs701.line_speed" in data:
+        ax.plot(tt, np.asarray(data["fs701.line_speed"])[sl], label="line (FS701 #2)", color="tab:orange", linewidth=0.8)
+    for key, label in ((f"{car}.command_velocity", "carriage set point"), (f"{car}.actual_velocity", "carriage actual")):
+        if key in data:
+            ax.plot(tt, np.asarray(data[key])[sl] * 60.0, label=label, linewidth=1.2)
+    ax.set_ylabel(f"speed [{lu}/min]")
+    ax = rows[1]
+    if "fs701.position_error" in data:
+        pe = np.asarray(data["fs701.position_error"])
+        ax.plot(tt, pe[sl], linewidth=0.9, label="position error (#3)")
+        seg = pe[r : f + 1]
+        if len(seg):
+            ax.set_title(f"Ready to Cut -> Cut completed: min {np.min(seg):.1f}, max {np.max(seg):.1f} increments", fontsize=9)
+    ax.set_ylabel("position error [incr]")
+    rows[-1].set_xlabel("time [s]")
+    for a in rows:
+        a.axvspan(t[r], t[f], color="tab:green", alpha=0.15, label="Ready to Cut -> Cut completed")
+        a.grid(True, alpha=0.3)
+        a.legend(loc="upper right", fontsize=8)
+    fig.suptitle(f"one cut cycle ({t[s0]:.2f} - {t[e0]:.2f} s)")
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return path
 
 
 # ============================================================================ documentation

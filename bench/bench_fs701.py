@@ -1,0 +1,55 @@
+"""Flying shear line (examples/flying_shear.toml, FS701 personality) against real time at T = 1 ms.
+
+The machine is built (the FS701's Adjust program commissions the carriage in the constructor),
+the batch is started and the line brought up to speed; then only the running line is timed:
+cutting 1 m pieces at 60/48 m/min, scope on and off. Reference: real time (1.0).
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from pathlib import Path
+
+from axisline.config import load_machine_file, parse_machine
+from axisline.machine import Machine
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "flying_shear.toml"
+WARMUP = 2.0      # s simulated before timing: Control Enable, Start, line at speed, first cuts
+TIMED = 10.0      # s simulated and timed (the line runs 2..12 s: speed change at 9 s included)
+
+
+def _machine(trace: bool) -> Machine:
+    config = load_machine_file(EXAMPLE)
+    data = config.model_dump()
+    data["trace"]["enabled"] = trace
+    return Machine(parse_machine(data, str(EXAMPLE)), source=str(EXAMPLE))
+
+
+def _running(trace: bool) -> Machine:
+    m = _machine(trace)  # commissioning done in the constructor
+    m.scheduler.run(round(WARMUP / m.period))
+    return m
+
+
+def bench_fs701(runs: int = 5) -> None:
+    print("fs701: flying shear line (examples/flying_shear.toml), running line after commissioning, T = 1 ms")
+    for trace in (False, True):
+        factors = []
+        costs = []
+        for _ in range(runs):
+            m = _running(trace)
+            n = round(TIMED / m.period)
+            s = m.scheduler
+            t0 = time.perf_counter()
+            s.run(n)
+            wall = time.perf_counter() - t0
+            factors.append(TIMED / wall)
+            costs.append(wall / n * 1e6)
+        print(f"  scope {'on ' if trace else 'off'}: {statistics.median(factors):7.1f}x real time, "
+              f"{statistics.median(costs):6.1f} us per cycle "
+              f"(median of {runs} runs of {TIMED:g} s simulated; min {min(factors):.1f}x, max {max(factors):.1f}x)")
+
+
+if __name__ == "__main__":
+    bench_fs701()
