@@ -157,3 +157,27 @@ def test_run_json_and_report(tmp_path):
     for png in ("fs701_length_error.png", "fs701_line_speed.png", "fs701_carriage.png"):
         assert (rep / png).stat().st_size > 1000 and f"]({png})" in text
     assert (rep / "trace.npz").exists()
+
+
+def test_run_json_has_the_cut_records_and_summary_in_the_issues_names(tmp_path):
+    # issue 4: {"cuts": [{"target_lu", "actual_lu", "error_lu", "error_counts",
+    #  "line_speed_lu_min", "max_pos_error_counts"}], "summary": {"count", "mean_error_lu",
+    #  "max_abs_error_counts", "cuts_per_minute"}}
+    import json
+
+    from typer.testing import CliRunner
+
+    from axisline.cli import app
+
+    example = Path(__file__).resolve().parents[3] / "examples" / "flying_shear.toml"
+    res = CliRunner().invoke(app, ["run", str(example), "--quiet", "--json", str(tmp_path / "o.json")])
+    assert res.exit_code == 0, res.output
+    doc = json.loads((tmp_path / "o.json").read_text())
+    for cut in doc["cuts"]:
+        assert {"target_lu", "actual_lu", "error_lu", "error_counts", "line_speed_lu_min", "max_pos_error_counts"} <= set(cut)
+    measured = [c for c in doc["cuts"] if c["error_lu"] is not None]
+    assert doc["summary"]["count"] == len(measured) >= 19
+    assert doc["summary"]["max_abs_error_counts"] == max(abs(c["error_counts"]) for c in measured) <= 1.0
+    assert 40.0 < doc["summary"]["cuts_per_minute"] < 70.0  # 1 m pieces at up to 60 m/min
+    assert all(c["max_pos_error_counts"] >= abs(0.0) for c in measured)
+    assert doc["summary"]["mean_error_lu"] == pytest.approx(sum(c["error_lu"] for c in measured) / len(measured))

@@ -112,6 +112,7 @@ class CutMeasurement:
     following_error: float  # carriage increments: the FS701's Position Error (#3) at the cut
     following_error_lu: float
     material_point: float  # LU: the material coordinate of the cut
+    max_pos_error_counts: float | None = None  # largest |Position Error| from Ready to Cut to the cut
     mark_offset: float | None = None  # LU: cut point - nearest mark's active edge (print marks)
     mark_offset_counts: float | None = None
     tolerance: float | None = None  # increments the piece is checked against (None: not checked)
@@ -161,6 +162,7 @@ class CutMeter:
         line_speed_measured: float,
         following_error: float,
         at_mark: bool = True,
+        max_pos_error: float | None = None,
     ) -> CutMeasurement:
         x, v, a = self.material()
         point = x - self.tool()
@@ -186,6 +188,7 @@ class CutMeter:
             constant_speed=both_constant,
             following_error=following_error,
             following_error_lu=following_error / kc,
+            max_pos_error_counts=max_pos_error,
             material_point=point,
         )
         if self.marks is not None and at_mark:

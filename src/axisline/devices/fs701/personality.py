@@ -709,6 +709,8 @@ class Fs701Personality(Personality):
             line_speed_measured=c.line_speed,
             following_error=c.position_error,
             at_mark=info is None or info.kind is not CutKind.ADDITIONAL,  # line.py M5
+            # #12/#13, kept by the cutter from Ready to Cut on: the error over the cut window
+            max_pos_error=max(abs(c.min_pos_error), abs(c.max_pos_error), abs(c.position_error)),
         )
         if rec.in_tolerance is False and self.config.tolerance_fault:
             what = (
@@ -717,6 +719,12 @@ class Fs701Personality(Personality):
             self.machine.faults.append(
                 f"t={rec.time:.4f} s fs701: cut {rec.index}: {what} increments beyond the tolerance of +-{rec.tolerance:g}"
             )
+
+    def json_fields(self, device_summary: dict[str, Any]) -> dict[str, Any]:
+        """`run --json`: "cuts" and "summary" in the names of the issue (jsonout.py)."""
+        from .jsonout import job_json
+
+        return job_json(device_summary)
 
     def _mark_offset(self, point: float) -> float | None:
         """M4: cut point - the nearest mark's active edge on the material."""
