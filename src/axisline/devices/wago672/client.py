@@ -42,6 +42,7 @@ from pymodbus.exceptions import ModbusException
 
 from axisline.devices.wago672.config_table import ConfigTable
 from axisline.devices.wago672.coupler import OUTPUT_READBACK, REGISTERS_PER_MODULE, WATCHDOG_STATUS, WATCHDOG_TIME, pack, unpack
+from axisline.devices.wago672.mailbox import MbxOpcode
 from axisline.devices.wago672.image import (
     IMAGE_SIZE,
     OFFSET_C0,
@@ -83,29 +84,8 @@ _MODE_BITS = 0xF8
 _RUN = C1.Enable | C1.Stop2_N
 
 
-class Mbx:
-    """Mailbox opcodes (manual §4.2, wago.md §3.8)."""
-
-    IDLE = 0x00
-    DRIVE_COMMAND = 0x40
-    DLD_START = 0x41
-    DLD_CONT = 0x42
-    DLD_END = 0x43
-    TABLE_ERASE = 0x44
-    TABLE_COPY = 0x45
-    TABLE_START = 0x46
-    TABLE_STOP = 0x48
-    DIAG_RD_ERROR = 0x49
-    DIAG_QUIT_ERROR = 0x4A
-    DIAG_RD_VAR = 0x4C
-    DIAG_RD_BIT = 0x4D
-    DIAG_QUERY_STORAGE = 0x4E
-    TABLE_GET_ACTIVE = 0x4F
-    CONFIG_SET_PTR = 0x50
-    CONFIG_WR = 0x51
-    CONFIG_RD = 0x52
-    CONFIG_SAVE = 0x53
-    CONFIG_RESTORE = 0x54
+# the module's own opcode table: the client speaks exactly what the mailbox implements
+Mbx = MbxOpcode
 
 
 class Wago672ClientError(RuntimeError):
