@@ -233,6 +233,7 @@ class EncoderMaster(Master):
         self._modulus = 1 << counter_bits if counter_bits is not None else 0
         delta = getattr(encoder, "delta", None)
         self._delta = delta if callable(delta) else self._plain_delta
+        self._plain = not callable(delta)  # _update inlines _plain_delta
 
         if velocity_filter == "window":
             st = self.period if sampling_time is None else _positive("sampling_time", sampling_time)
@@ -272,25 +273,42 @@ class EncoderMaster(Master):
         return d
 
     def _update(self, cycle: int) -> None:
-        raw = self._read_raw()
-        d = self._delta(raw, self._raw) * self.multiplier
+        raw = self.encoder.counts
+        if type(raw) is not int:  # (_read_raw's check; the plain int needs none)
+            if isinstance(raw, bool) or not hasattr(raw, "__index__"):
+                raise TypeError(f"encoder.counts must be an integer, got {raw!r}")
+            raw = int(raw)
+        if self._plain:
+            d = raw - self._raw
+            m = self._modulus
+            if m:
+                d %= m
+                if d >= m // 2:
+                    d -= m
+        else:
+            d = self._delta(raw, self._raw)
+        d *= self.multiplier
         self._raw = raw
         counts = self._counts + d
         self._counts = counts
         cpu = self.counts_per_unit
         self._p = counts / cpu
         if self.velocity_filter == "window":
-            n = len(self._ring_cycle)
+            ring_cycle = self._ring_cycle
+            n = len(ring_cycle)
             i = (self._head + 1) % n
             self._head = i
-            if self._fill < n:
-                self._fill += 1
-            self._ring_cycle[i] = cycle
-            self._ring_counts[i] = counts
-            if self._fill > 1:
-                j = (i - self._fill + 1) % n  # oldest entry: N cycles back once the ring is full
-                dt = (cycle - self._ring_cycle[j]) * self.period
-                v = (counts - self._ring_counts[j]) / (cpu * dt)
+            fill = self._fill
+            if fill < n:
+                fill += 1
+                self._fill = fill
+            ring_cycle[i] = cycle
+            ring_counts = self._ring_counts
+            ring_counts[i] = counts
+            if fill > 1:
+                j = (i - fill + 1) % n  # oldest entry: N cycles back once the ring is full
+                dt = (cycle - ring_cycle[j]) * self.period
+                v = (counts - ring_counts[j]) / (cpu * dt)
                 self._a = (v - self._ring_v[j]) / dt
                 self._v = v
             self._ring_v[i] = self._v

@@ -110,16 +110,24 @@ class IncrementalEncoder:
         if self.index_every_units is not None:
             self._watch_index(previous)
         self._previous = position
-        self.counts_unwrapped = self.counts_at(position)
-        self.counts = self._wrap(self.counts_unwrapped)
-        return self.counts
+        # counts_at and _wrap, inline (per cycle)
+        counts = math.floor(self.direction * position * self.lines_per_unit * self.multiplier + _EDGE_TOLERANCE)
+        self.counts_unwrapped = counts
+        modulus = self._modulus
+        if modulus:
+            counts %= modulus
+        self.counts = counts
+        return counts
 
     def _watch_index(self, previous: float) -> None:
         every = self.index_every_units
         assert every is not None
         lo, hi = cycle_bounds(self.source, previous)
-        first = math.ceil((lo - self.index_offset) / every)
-        last = math.floor((hi - self.index_offset) / every)
+        offset = self.index_offset
+        first = math.ceil((lo - offset) / every)
+        last = math.floor((hi - offset) / every)
+        if first > last:  # no index position within the cycle's travel: no pulse
+            return
         best_fraction = math.inf
         best_x = 0.0
         for k in range(first, last + 1):

@@ -316,6 +316,8 @@ class SlipContact:
         return start + j * (s - k * self._cell)
 
     def _wheel(self, s: float) -> float:
+        if self._sigma == 0.0:  # no jitter: both integrals are 0.0 (x - (0.0 - 0.0) is x)
+            return self._w_base + (1.0 - self._slip) * (s - self._s_base)
         return (
             self._w_base
             + (1.0 - self._slip) * (s - self._s_base)

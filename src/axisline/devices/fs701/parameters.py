@@ -669,10 +669,11 @@ class ParameterSet:
     checks all values before it stores any of them.
     """
 
-    __slots__ = ("_raw",)
+    __slots__ = ("_raw", "_version")
 
     def __init__(self, values: Mapping["str | int", Any] | None = None) -> None:
         object.__setattr__(self, "_raw", {p.code: p.default for p in PARAMETERS})
+        object.__setattr__(self, "_version", 0)  # bumped by every write (a cheap "changed?" test)
         if values:
             self.update(values)
 
@@ -691,6 +692,7 @@ class ParameterSet:
     def copy(self) -> "ParameterSet":
         new = ParameterSet.__new__(ParameterSet)
         object.__setattr__(new, "_raw", dict(self._raw))
+        object.__setattr__(new, "_version", 0)
         return new
 
     # ---- access -----------------------------------------------------------------------------
@@ -704,10 +706,12 @@ class ParameterSet:
     def set(self, key: "str | int | Parameter", value: Any) -> None:
         p = parameter(key)
         self._raw[p.code] = p.to_raw(value)
+        object.__setattr__(self, "_version", self._version + 1)
 
     def set_raw(self, key: "str | int | Parameter", raw: int) -> None:
         p = parameter(key)
         self._raw[p.code] = p.check_raw(raw)
+        object.__setattr__(self, "_version", self._version + 1)
 
     def update(self, values: Mapping["str | int", Any]) -> None:
         """Set several values (engineering units); all are checked before any is stored."""
@@ -716,6 +720,7 @@ class ParameterSet:
             p = parameter(key)
             staged[p.code] = p.to_raw(value)
         self._raw.update(staged)
+        object.__setattr__(self, "_version", self._version + 1)
 
     def update_raw(self, values: Mapping["str | int", int]) -> None:
         staged = {}
@@ -723,6 +728,7 @@ class ParameterSet:
             p = parameter(key)
             staged[p.code] = p.check_raw(raw)
         self._raw.update(staged)
+        object.__setattr__(self, "_version", self._version + 1)
 
     def reset(self, key: "str | int | Parameter | None" = None) -> None:
         """Restore one parameter (or all) to the factory default."""
@@ -732,10 +738,12 @@ class ParameterSet:
         else:
             p = parameter(key)
             self._raw[p.code] = p.default
+        object.__setattr__(self, "_version", self._version + 1)
 
     def assign(self, other: "ParameterSet") -> None:
         """Take every value of `other` (already valid by construction)."""
         self._raw.update(other._raw)
+        object.__setattr__(self, "_version", self._version + 1)
 
     # ---- views ------------------------------------------------------------------------------
     def as_dict(self, *, raw: bool = False) -> dict[str, int | float]:
@@ -770,13 +778,19 @@ class ParameterSet:
         return p.from_raw(self._raw[p.code])
 
     def __setattr__(self, name: str, value: Any) -> None:
-        if name == "_raw":  # copy / pickle restore the slot
+        if name == "_raw" or name == "_version":  # copy / pickle restore the slots
             object.__setattr__(self, name, value)
+            if name == "_raw":
+                try:
+                    object.__setattr__(self, "_version", self._version + 1)
+                except AttributeError:
+                    object.__setattr__(self, "_version", 0)
             return
         p = _BY_NAME.get(name)
         if p is None:
             raise AttributeError(f"ParameterSet has no parameter {name!r}")
         self._raw[p.code] = p.to_raw(value)
+        object.__setattr__(self, "_version", self._version + 1)
 
     def __getitem__(self, key: "str | int") -> int | float:
         return self.get(key)

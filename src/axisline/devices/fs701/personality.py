@@ -347,6 +347,8 @@ class Fs701Personality(Personality):
         self.registers.store_to_eeprom()  # the commissioned set is the unit's EEPROM (manual §7: store)
         self.registers.on_store.append(self._stored)
         self._synced = params.copy()
+        self._params_obj: Any = None
+        self._params_seen = -1
         self._pending_rebuild = False
         self.cutter: Cutter = self._build_cutter(None)
         machine.drive_by(config.carriage, self._control, volts=True)
@@ -624,8 +626,13 @@ class Fs701Personality(Personality):
     def tick(self, cycle: int) -> None:
         c = self.cutter
         params = self.params
-        if params != self._synced:
-            self._apply_parameters()
+        # parameter writes since the last cycle: the set's write counter first, the (full)
+        # comparison only when something was written
+        if params._version != self._params_seen or params is not self._params_obj:
+            self._params_obj = params
+            self._params_seen = params._version
+            if params != self._synced:
+                self._apply_parameters()
         if self._pending_rebuild and not c.inputs.control_enable:
             self._rebuild()
             c = self.cutter
@@ -637,8 +644,15 @@ class Fs701Personality(Personality):
         if levels != self._hw_levels:
             self._hw_levels = levels
             self._hw_word = self.registers.io.hardware_command_word(levels)
-        self.registers.set_hardware_commands(self._hw_word)
-        word = self.registers.status.all_commands
+        reg = self.registers
+        st = reg.status
+        hw = self._hw_word
+        word = hw | st._serial | st.can_commands
+        # the register service reacts to edges of All Commands only: none when neither the
+        # hardware word nor All Commands changed since its last call
+        if st.hardware_commands != hw or word != reg._edges._last:
+            reg.set_hardware_commands(hw)
+            word = st.all_commands
         if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
             self._service_programs(cycle, word)
         # the cutter's inputs from All Commands: one precomputed field table per word seen
