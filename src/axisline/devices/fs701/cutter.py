@@ -236,7 +236,10 @@ class CutState(IntEnum):
 
 
 #: the states in which the carriage runs synchronous with the blade down or coming (Ready to Cut)
-_SYNC_STATES = frozenset((CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED))
+# (a tuple: `in` on a set would call Enum.__hash__, a Python function, every cycle)
+_SYNC_STATES = (CutState.READY_TO_CUT, CutState.GAP, CutState.GAP_COMPLETED)
+# states of the carriage outside a cut cycle (standing or jogging, or disabled)
+_OUT_OF_CYCLE = (CutState.HOME, CutState.JOG, CutState.IDLE)
 
 
 class CutKind(IntEnum):
@@ -386,17 +389,34 @@ class CutterSettings:
             values["ana_out_gain_2"] = float(gain) / 100.0
         return cls(**values)
 
-    # ------------------------------------------------------------------ scaling (C20)
+    # ------------------------------------------------------------------ derived values
 
-    @property
-    def line_counts_per_lu(self) -> float:
-        """kL: line encoder increments (after x1/x2/x4) per LU."""
-        return self.pulses_line_1000 / 1000.0
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "version", 0)
+        self._derive()
 
-    @property
-    def cut_counts_per_lu(self) -> float:
-        """kC: carriage encoder increments (after x1/x2/x4) per LU."""
-        return self.pulses_cut_1000 / 1000.0
+    def __setattr__(self, name: str, value: Any) -> None:
+        object.__setattr__(self, name, value)
+        if "version" in self.__dict__:  # (not during __init__: __post_init__ derives once)
+            self._derive()
+
+    def _derive(self) -> None:
+        """The values the cut cycle reads every cycle, computed when a setting is written (rare)
+        instead of on every read; `version` counts the writes (a cheap "changed?" test for
+        values cached elsewhere, e.g. the position loop's gains)."""
+        d = self.__dict__
+        # scaling (C20) -- kL, kC: line / carriage encoder increments (after x1/x2/x4) per LU
+        d["line_counts_per_lu"] = self.pulses_line_1000 / 1000.0
+        d["cut_counts_per_lu"] = self.pulses_cut_1000 / 1000.0
+        # Error 05: Pulses Line/1000 : Pulses Cut/1000 beyond 16:1 or 1:16 (16 itself allowed)
+        pl, pc = self.pulses_line_1000, self.pulses_cut_1000
+        d["ratio_error"] = True if pl <= 0 or pc <= 0 else (pl > 16 * pc or pc > 16 * pl)
+        # Max. Line Speed in LU/s (100 % of the feed-forward, jog and virtual-master scaling)
+        d["v_max_line"] = self.max_line_speed / 60.0
+        # R = 1 + Sync Rate/100: carriage speed / line speed while synchronous
+        d["sync_ratio"] = 1.0 + self.sync_rate / 100.0
+        d["s_ramps"] = self.ramp_form == 0
+        d["version"] += 1
 
     @staticmethod
     def _multiplier(mode: int) -> int:
@@ -430,30 +450,6 @@ class CutterSettings:
 
     def cut_counts_to_lu(self, counts: float) -> float:
         return counts / self.cut_counts_per_lu
-
-    @property
-    def ratio_error(self) -> bool:
-        """Error 05: Pulses Line/1000 : Pulses Cut/1000 beyond 16:1 or 1:16 (16 itself allowed)."""
-        pl, pc = self.pulses_line_1000, self.pulses_cut_1000
-        if pl <= 0 or pc <= 0:
-            return True
-        return pl > 16 * pc or pc > 16 * pl
-
-    # ------------------------------------------------------------------ derived values (LU/s)
-
-    @property
-    def v_max_line(self) -> float:
-        """Max. Line Speed in LU/s (100 % of the feed-forward, jog and virtual-master scaling)."""
-        return self.max_line_speed / 60.0
-
-    @property
-    def sync_ratio(self) -> float:
-        """R = 1 + Sync Rate/100: carriage speed / line speed while synchronous."""
-        return 1.0 + self.sync_rate / 100.0
-
-    @property
-    def s_ramps(self) -> bool:
-        return self.ramp_form == 0
 
     def virtual_speed_effective(self) -> float:
         """Virt. Line Speed after the limit to Max. Line Speed and the 1/2048 quantisation (C18), LU/min."""
@@ -592,6 +588,9 @@ class LineMaster:
         self._cycle: int | None = None
         self._virtual_running = False
         self._virtual_target = 0.0
+        # stopped and standing still: its state cannot change until Run Virt. Master, so its
+        # per-cycle update is skipped (run_virtual catches its cycle up before a new ramp)
+        self._virtual_idle = False
 
     def _source(self) -> Any:
         return self.virtual if self.use_virtual else self.encoder_master
@@ -606,6 +605,8 @@ class LineMaster:
     def run_virtual(self, on: bool, speed_lu_min: float | None = None) -> None:
         """Run Virt. Master: ramp to the (quantised) Virt. Line Speed, or to standstill.
         A changed Virt. Line Speed or Ramp Vir. Master ramps from the current speed."""
+        if not on and not self._virtual_running:
+            return  # stopped and staying stopped (the target of a stopped master is 0)
         s = self.settings
         v = (s.virtual_speed_effective() if speed_lu_min is None else speed_lu_min) / 60.0
         if s.dir_frequency != 1:
@@ -614,18 +615,27 @@ class LineMaster:
         if on != self._virtual_running or target != self._virtual_target:
             self._virtual_running = on
             self._virtual_target = target
+            virtual = self.virtual
+            if self._virtual_idle and self._cycle is not None:
+                virtual.update(self._cycle)  # the ramp starts from the last cycle, as always
+            self._virtual_idle = False
             vm = s.v_max_line
             acc = vm / s.ramp_vir_master if s.ramp_vir_master > 0 else vm / self.period
-            self.virtual.acceleration_limit = self.virtual.deceleration_limit = acc
-            self.virtual.set_velocity(target)
+            virtual.acceleration_limit = virtual.deceleration_limit = acc
+            virtual.set_velocity(target)
 
     def update(self, cycle: int) -> None:
         if cycle == self._cycle:
             return
         first = self._cycle is None
         self._cycle = cycle
-        # the virtual master always runs (its motion-detection output, Adjust reference)
-        self.virtual.update(cycle)
+        # the virtual master always runs (its motion-detection output, Adjust reference),
+        # except when it stands still stopped (_virtual_idle)
+        if not self._virtual_idle:
+            virtual = self.virtual
+            virtual.update(cycle)
+            if not self._virtual_running and virtual.in_velocity:
+                self._virtual_idle = True
         if self.encoder_master is not None:
             self.encoder_master.update(cycle)
         src = self._source()
@@ -1016,7 +1026,8 @@ class Cutter:
         st = self.cut_state
         o.error = errors != 0
         o.max_correction = self.loop.at_max_correction
-        o.home = abs(ax.actual_position - self.home_position) <= self.settings.home_window and ax.powered
+        d = ax._actual - self.home_position  # (Axis.actual_position / .powered, read directly: per cycle)
+        o.home = (d if d >= 0.0 else -d) <= self.settings.home_window and ax._powered
         o.gap_completed = st is CutState.GAP_COMPLETED
         o.ready_to_cut = st in _SYNC_STATES
         self.printmarks.outputs(o)
@@ -1110,10 +1121,12 @@ class Cutter:
     def _limits_and_alarm(self) -> None:
         s = self.settings
         ax = self.axis
-        if not ax.powered:
+        if not ax._powered:
             return
-        rel = ax.actual_position - self.zero
-        cycle_running = self.cut_state not in (CutState.HOME, CutState.JOG, CutState.IDLE)
+        actual = ax._actual
+        rel = actual - self.zero
+        st = self.cut_state
+        cycle_running = st not in _OUT_OF_CYCLE
         automatic = self.inputs.start_stop or cycle_running
         if automatic:
             self.outputs.alarm = rel >= s.alarm_position
@@ -1123,10 +1136,10 @@ class Cutter:
             self.outputs.alarm = False
         # forward excursion / position-error statistics
         if cycle_running:
-            exc = (ax.actual_position - self.home_position) * s.cut_counts_per_lu
+            exc = (actual - self.home_position) * s.cut_counts_per_lu
             if exc > self.car_travel_dist:
                 self.car_travel_dist = exc
-        if self.outputs.ready_to_cut or self.cut_state is CutState.READY_TO_CUT:
+        if self.outputs.ready_to_cut or st is CutState.READY_TO_CUT:
             e = self.position_error
             if e < self.min_pos_error:
                 self.min_pos_error = e

@@ -74,8 +74,11 @@ class Shear:
     def step(self, cycle: int, ready_to_cut: bool, edge_sense: int) -> bool:
         """Advance one cycle; True when the blade passes the material in this cycle (the cut)."""
         idle = edge_sense == 1
-        if not self.busy:
+        if self._blade_at is None and self._on_at is None and self._off_at is None:  # not busy
             self.level = idle
+            if not ready_to_cut or self._rtc:  # and no new cut: nothing below would happen
+                self._rtc = ready_to_cut
+                return False
         if ready_to_cut and not self._rtc:
             self._blade_at = cycle + self.blade_cycles
             self._on_at = cycle + self.cut_cycles
@@ -236,7 +239,9 @@ class BatchJob:
         if not waste and self.state == "running":
             self.counted += 1
 
-    def step(self, cycle: int, *, carriage_home: bool, carriage_settled: bool, cycle_running: bool) -> None:
+    def step(self, cycle: int, carriage_parked: Callable[[], bool]) -> None:
+        """One cycle of the PLC. `carriage_parked()`: the carriage stands at home, settled, with
+        no cut cycle running -- asked only while stopping (it is not free to compute)."""
         st = self.state
         if st == "idle":
             self.control_enable = True
@@ -254,7 +259,7 @@ class BatchJob:
                 self.state = "stopping"
                 self._event(cycle, f"Stop: batch of {self.batch} cut")
         elif st == "stopping":
-            if carriage_home and carriage_settled and not cycle_running:
+            if carriage_parked():
                 self.control_enable = False
                 self.state = "done"
                 self._event(cycle, "Control Enable OFF: carriage at home")

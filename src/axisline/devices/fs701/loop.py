@@ -84,6 +84,7 @@ __all__ = [
 DAC_LIMIT_VOLTS = 10.0
 DAC_STEPS = 2048  # 12 bit signed: +-2048 steps over +-10 V
 OFFSET_FULL_SCALE = 2047  # Ana-Out Offset range -2047..+2047 = -100..+100 %
+_DAC_STEP = DAC_LIMIT_VOLTS / DAC_STEPS
 
 
 class PositionLoop:
@@ -93,6 +94,7 @@ class PositionLoop:
         self.settings = settings
         self.period = float(period)
         self.dac = dac
+        self._version = -1  # the constants are computed at the first update
         self.reset()
 
     def reset(self) -> None:
@@ -138,10 +140,20 @@ class PositionLoop:
 
     @staticmethod
     def quantise(volts: float) -> float:
-        step = DAC_LIMIT_VOLTS / DAC_STEPS
-        return round(volts / step) * step
+        return round(volts / _DAC_STEP) * _DAC_STEP
 
     # ------------------------------------------------------------------ per cycle
+
+    def _constants(self) -> None:
+        """The loop's constants from the settings, again after a settings write (version)."""
+        s = self.settings
+        self._version = s.version
+        self._kc = s.cut_counts_per_lu
+        self._v_max = s.v_max_line
+        self._gain = self.gain_volts
+        self._kp = self.p_volts_per_increment()
+        self._offset = self.offset_volts()
+        self._max_corr = s.max_correction / 1000.0
 
     def update(
         self,
@@ -154,10 +166,12 @@ class PositionLoop:
     ) -> float:
         """Ana-Out 2 volts of this cycle (positions LU, velocity LU/s)."""
         s = self.settings
-        raw = (set_position - actual_position) * s.cut_counts_per_lu
-        ff = self.feed_forward(set_velocity)
+        if s.version != self._version:
+            self._constants()
+        raw = (set_position - actual_position) * self._kc
+        ff = set_velocity / self._v_max * self._gain  # feed_forward(set_velocity)
         self.feed_forward_value = ff
-        max_corr = s.max_correction / 1000.0
+        max_corr = self._max_corr
         if reset:
             # L7: the differential counter is held at zero, the PI part is off
             self._e_offset = raw
@@ -181,7 +195,7 @@ class PositionLoop:
                 corr = self._frozen
             else:
                 self._frozen = None
-                p = self.p_volts_per_increment() * e
+                p = self._kp * e
                 self.at_max_correction = p >= max_corr or p <= -max_corr
                 if p > max_corr:
                     p = max_corr
@@ -198,14 +212,14 @@ class PositionLoop:
                 else:
                     self.integral_value = 0.0
                 corr = p + self.integral_value
-        u = ff + corr + self.offset_volts()
+        u = ff + corr + self._offset
         self.saturated = u > DAC_LIMIT_VOLTS or u < -DAC_LIMIT_VOLTS
         if u > DAC_LIMIT_VOLTS:
             u = DAC_LIMIT_VOLTS
         elif u < -DAC_LIMIT_VOLTS:
             u = -DAC_LIMIT_VOLTS
         if self.dac:
-            u = self.quantise(u)
+            u = round(u / _DAC_STEP) * _DAC_STEP  # quantise(u)
         self.output = u
         return u
 

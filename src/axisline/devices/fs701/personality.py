@@ -81,6 +81,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import fields
+from functools import partial
 from pathlib import Path
 from typing import Annotated, Any, Callable
 
@@ -450,12 +451,10 @@ class Fs701Personality(Personality):
         if value == "job":
             if key not in ("control_enable", "start_stop"):
                 return None, False, f"device.inputs.{key} = 'job': the batch job switches only control_enable and start_stop"
-            job = self.job
-            attr = key
-            return (lambda: getattr(job, attr)), False, None
+            # (partial of a builtin: a C call, read every cycle)
+            return partial(getattr, self.job, key), False, None
         if value == "shear":
-            shear = self.shear
-            return (lambda: shear.level), False, None
+            return partial(getattr, self.shear, "level"), False, None
         sensor = self.machine.sensors.get(value)
         if sensor is not None:
             return (lambda: sensor.state), False, None
@@ -670,13 +669,7 @@ class Fs701Personality(Personality):
             self._measure(cycle)
         job = self.job
         if job is not None and not job.done:
-            drive = self.unit.drive
-            job.step(
-                cycle,
-                carriage_home=c.outputs.home,
-                carriage_settled=abs(drive.velocity) <= 1e-3 * self.settings.v_max_line,
-                cycle_running=c.cut_state not in (CutState.HOME, CutState.IDLE) or self.shear.busy,
-            )
+            job.step(cycle, self._carriage_parked)
         # the unit's registers follow the cutter
         if c.batch_counter != self._batch_seen or c.waste_counter != self._waste_seen:
             self._store_counters()
@@ -689,6 +682,15 @@ class Fs701Personality(Personality):
             self._new_errors(cycle, c.errors)
         if self._outputs:
             self._write_outputs()
+
+    def _carriage_parked(self) -> bool:
+        """The batch job's Stop waits for this: carriage home and settled, no cycle, blade idle."""
+        c = self.cutter
+        return (
+            c.outputs.home
+            and abs(self.unit.drive.velocity) <= 1e-3 * self.settings.v_max_line
+            and not (c.cut_state not in (CutState.HOME, CutState.IDLE) or self.shear.busy)
+        )
 
     def _feed_marks(self, c: Cutter) -> None:
         """Print-mark edges of the cycle just simulated, in order, to the cutter (In15)."""

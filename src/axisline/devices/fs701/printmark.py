@@ -215,13 +215,15 @@ class PrintMarkControl:
             self.capture = MarkCapture(self.channel, period=self.period)
             self._channel_ready = True
         self.channel.advance(pos)
+        mode_pm = s.cutting_mode in (2, 3)
+        teach = c.inputs.teach_printmark
+        if not mode_pm and not teach and not self._teach_prev and not self._edges:
+            return  # length mode, no teach, no edge: nothing below would change anything
         cap = self.capture
         cap.sensor_delay = float(s.photocell_delay) / 1000.0
         cap.sensor_to_tool = float(s.photocell_cut)
-        mode_pm = s.cutting_mode in (2, 3)
         window = self._ensure_window() if mode_pm else None
         # Teach Printmark (P2)
-        teach = c.inputs.teach_printmark
         if teach and not self._teach_prev:
             self._teach_mark = False
             if window is not None:
