@@ -73,19 +73,22 @@ class AxisUnit:
             self.actual_position = self.drive.position
 
     def loop(self, cycle: int) -> None:
-        v = self.drive.velocity
+        drive = self.drive
+        v = drive.velocity
         ctl = self.controller
         if ctl is None:
             self.velocity_output = self.axis.position_loop(self.actual_position, v)
         elif self.controller_volts:
             self.command_volts = u = ctl(self.actual_position, v)
-            self.velocity_output = u * self.drive.velocity_per_volt  # nominal: the scope's "output"
+            self.velocity_output = u * drive.velocity_per_volt  # nominal: the scope's "output"
         else:
             self.velocity_output = ctl(self.actual_position, v)
         fe = self.axis.following_error
-        if fe > self.max_following_error or -fe > self.max_following_error:
+        peak = self.max_following_error
+        if fe > peak or -fe > peak:
             self.max_following_error = abs(fe)
-        if v > self.max_speed or -v > self.max_speed:
+        peak = self.max_speed
+        if v > peak or -v > peak:
             self.max_speed = abs(v)
 
 
@@ -147,6 +150,7 @@ class Machine:
             self.device = base.load(config.machine.personality)(self, dev_cfg)
             self.scheduler.add_task("device", self.device.tick, Stage.LOGIC, every=config.machine.logic_every)
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
+        self._io_used = bool(self.io.inputs or self.io.outputs)
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
             self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
         self._axes = tuple((n, u.axis) for n, u in self.units.items())
@@ -194,7 +198,9 @@ class Machine:
                 for f in updates:
                     f(cycle)
 
-            self.scheduler.add_task("masters", update_masters, Stage.SETPOINTS)
+            # a single master's update is the whole task: run it without the loop around it
+            task = updates[0] if len(updates) == 1 else update_masters
+            self.scheduler.add_task("masters", task, Stage.SETPOINTS)
 
     @classmethod
     def from_file(
@@ -228,31 +234,27 @@ class Machine:
 
     def _actuator(self, unit: AxisUnit) -> Callable[[int], None]:
         axis, drive, dt = unit.axis, unit.drive, self.period
-        if isinstance(drive, StepperDrive):
-            # open loop: the pulse output follows the set point, the motor follows the pulses
-            def command() -> None:
-                drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
-
-        elif unit.config.drive.command == "analog":
-            volts_per_velocity = 1.0 / drive.velocity_per_volt
-
-            # the classic +-10 V interface: the amplifier's offset, drift and gain errors apply
-            def command() -> None:
-                if unit.controller_volts:  # a device's analogue output (Machine.drive_by)
-                    drive.command_voltage(unit.command_volts)
-                else:
-                    drive.command_voltage(unit.velocity_output * volts_per_velocity)
-
-        else:
-
-            def command() -> None:
-                drive.command_velocity(unit.velocity_output)
+        step = drive.step
+        stepper = isinstance(drive, StepperDrive)
+        analog = not stepper and unit.config.drive.command == "analog"
+        volts_per_velocity = 1.0 / drive.velocity_per_volt if analog else 0.0
 
         def actuate(cycle: int) -> None:
             if (axis.state is not _DISABLED) is not drive.enabled:
                 drive.enable(not drive.enabled)  # the amplifier follows the axis' power
-            command()
-            drive.step(dt)
+            if analog:
+                # the classic +-10 V interface: the amplifier's offset, drift and gain errors
+                # apply; a device's analogue output (Machine.drive_by) or the axis' loop output
+                if unit.controller_volts:
+                    drive.command_voltage(unit.command_volts)
+                else:
+                    drive.command_voltage(unit.velocity_output * volts_per_velocity)
+            elif stepper:
+                # open loop: the pulse output follows the set point, the motor follows the pulses
+                drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
+            else:
+                drive.command_velocity(unit.velocity_output)
+            step(dt)
 
         return actuate
 
@@ -276,12 +278,15 @@ class Machine:
         dt = self.period
         if self.material is not None:
             self.material.step(dt)
-        t_start = cycle * self.clock.period_us / 1e6
-        for sensor in self.sensors.values():
-            sensor.sample(t_start, dt)
+        sensors = self.sensors
+        if sensors:  # (t_start serves only the sensors)
+            t_start = cycle * self.clock.period_us / 1e6
+            for sensor in sensors.values():
+                sensor.sample(t_start, dt)
         for name, sensor in self._io_followers:
             self.io.set_input(name, sensor.state)
-        self.io.sample()
+        if self._io_used:  # an image without inputs and outputs samples nothing
+            self.io.sample()
 
     def _plant_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
         out: dict[str, tuple[Callable[[], Any], str, type]] = {}

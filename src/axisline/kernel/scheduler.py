@@ -110,12 +110,13 @@ class Scheduler:
             raise RuntimeError("run_cycle called from inside a cycle")
         self._in_cycle = True
         try:
-            cycle = self.clock.cycle
+            clock = self.clock
+            cycle = clock.cycle
             self.commands.apply_pending(cycle)
             for fn, every, phase in self._plan:
                 if every == 1 or (cycle - phase) % every == 0:
                     fn(cycle)
-            self.clock.tick()
+            clock.tick()
         finally:
             self._in_cycle = False
         return cycle

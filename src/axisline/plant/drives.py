@@ -163,7 +163,10 @@ class ServoDrive:
 
     def command_voltage(self, volts: float) -> float:
         """Analog velocity command; returns the voltage after the +-10 V clamp."""
-        u = min(ANALOG_LIMIT_VOLTS, max(-ANALOG_LIMIT_VOLTS, float(volts)))
+        u = float(volts)
+        # min(LIMIT, max(-LIMIT, u)) as comparisons, the same result (NaN too: -LIMIT)
+        u = u if u > -ANALOG_LIMIT_VOLTS else -ANALOG_LIMIT_VOLTS
+        u = u if u < ANALOG_LIMIT_VOLTS else ANALOG_LIMIT_VOLTS
         self.saturated = u != volts
         self.voltage = u
         self._analog = True
@@ -202,17 +205,20 @@ class ServoDrive:
         """Exact state after ``h`` s of the loop following the reference ``r0 + rho*t``."""
         if self.loop == "first_order":
             tau = self.time_constant
-            e0 = v - (r0 - rho * tau)  # deviation from the ramp's steady-state response
+            rho_tau = rho * tau
+            e0 = v - (r0 - rho_tau)  # deviation from the ramp's steady-state response
             if h == self._memo_h and tau == self._memo_tau:
                 one_minus_e = self._memo_decay  # the usual whole cycle: computed once
             else:
                 one_minus_e = -math.expm1(-h / tau)
                 self._memo_h, self._memo_tau, self._memo_decay = h, tau, one_minus_e
-            decay = 1.0 - one_minus_e
-            v_h = r0 + rho * h - rho * tau + e0 * decay
-            a_h = rho - e0 * decay / tau
-            x_h = x + (r0 - rho * tau) * h + 0.5 * rho * h * h + e0 * tau * one_minus_e
-            return x_h, v_h, a_h
+            e_h = e0 * (1.0 - one_minus_e)
+            # (rho * tau and e0 * decay computed once: the same products as written out)
+            return (
+                x + (r0 - rho_tau) * h + 0.5 * rho * h * h + e0 * tau * one_minus_e,
+                r0 + rho * h - rho_tau + e_h,
+                rho - e_h / tau,
+            )
         wn = self.natural_frequency
         z = self.damping
         lag = 2.0 * z * rho / wn  # steady-state velocity lag behind a ramping reference
@@ -252,13 +258,12 @@ class ServoDrive:
     def step(self, dt: float) -> None:
         """Advance one cycle of ``dt`` seconds with the current command held."""
         self._dt = dt
-        self._x0, self._v0, self._a0 = self.position, self.velocity, self.acceleration
+        x, v, a = self.position, self.velocity, self.acceleration
+        self._x0, self._v0, self._a0 = x, v, a
         self._pieces_valid = False
         self._coasting = not self.enabled
         if self._coasting:
-            self.position, self.velocity, self.acceleration = self._coast(
-                self.position, self.velocity, dt
-            )
+            self.position, self.velocity, self.acceleration = self._coast(x, v, dt)
             self._reference = self.velocity
             self._elapsed += dt
             return
@@ -280,7 +285,7 @@ class ServoDrive:
                 h1 = t_ramp
                 r = target  # snapped: the ramp ends exactly on the target
         self._h1, self._r1, self._rho1 = h1, r1, rho1
-        state = self._advance(self.position, self.velocity, self.acceleration, r1, rho1, h1)
+        state = self._advance(x, v, a, r1, rho1, h1)
         if h1 < dt:
             self._xm, self._vm, self._am = state
             self._r2 = target

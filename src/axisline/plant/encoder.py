@@ -107,8 +107,14 @@ class IncrementalEncoder:
         previous = self._previous
         position = float(self.source.position)  # type: ignore[attr-defined]
         self.index_pulses = 0
-        if self.index_every_units is not None:
-            self._watch_index(previous)
+        every = self.index_every_units
+        if every is not None:
+            lo, hi = cycle_bounds(self.source, previous)
+            offset = self.index_offset
+            first = math.ceil((lo - offset) / every)
+            last = math.floor((hi - offset) / every)
+            if first <= last:  # (else no index position within the cycle's travel: no pulse)
+                self._watch_index(previous, first, last)
         self._previous = position
         # counts_at and _wrap, inline (per cycle)
         counts = math.floor(self.direction * position * self.lines_per_unit * self.multiplier + _EDGE_TOLERANCE)
@@ -119,15 +125,10 @@ class IncrementalEncoder:
         self.counts = counts
         return counts
 
-    def _watch_index(self, previous: float) -> None:
+    def _watch_index(self, previous: float, first: int, last: int) -> None:
+        """Count the index pulses ``first..last`` passed in the cycle; latch the first if armed."""
         every = self.index_every_units
         assert every is not None
-        lo, hi = cycle_bounds(self.source, previous)
-        offset = self.index_offset
-        first = math.ceil((lo - offset) / every)
-        last = math.floor((hi - offset) / every)
-        if first > last:  # no index position within the cycle's travel: no pulse
-            return
         best_fraction = math.inf
         best_x = 0.0
         for k in range(first, last + 1):

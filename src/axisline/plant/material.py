@@ -33,6 +33,17 @@ class SpeedChange(NamedTuple):
     acceleration: float = math.inf
 
 
+def _turning_point(segment: tuple[float, float, float, float, float]) -> float | None:
+    """Time at which a segment (offset, duration, p0, v0, a) turns round strictly inside it,
+    or None: then the segment is monotonic."""
+    _, h, _, v0, a = segment
+    if a != 0.0:
+        t_turn = -v0 / a
+        if 0.0 < t_turn < h:
+            return t_turn
+    return None
+
+
 class MaterialLine:
     """Material running at a line speed that follows a speed profile.
 
@@ -66,14 +77,11 @@ class MaterialLine:
         self._t_base = 0.0
         self._steps = 0
         self._dt = 0.0
+        self._t_next = self._profile[0].time if self._profile else math.inf  # next change due
         self.cycle_start_time = 0.0
         self.cycle_start_position = self.position
-        # Constant-acceleration segments of the last cycle: offset (s), duration, p0, v0, a.
-        self._seg_off: list[float] = []
-        self._seg_h: list[float] = []
-        self._seg_p: list[float] = []
-        self._seg_v: list[float] = []
-        self._seg_a: list[float] = []
+        # Constant-acceleration segments of the last cycle: (offset (s), duration, p0, v0, a).
+        self._segs: list[tuple[float, float, float, float, float]] = []
         self._bounds_valid = False
         self._lo = self._hi = self.position
 
@@ -101,103 +109,109 @@ class MaterialLine:
             return 0.0
         return math.copysign(self._ramp, self.target_speed - self.velocity)
 
-    def _apply_due(self, t: float) -> None:
+    def _apply_due(self, t: float) -> float:
+        """Apply the profile changes due at ``t``; return the time of the next one (inf: none)."""
         profile = self._profile
         while self._next < len(profile) and profile[self._next].time <= t:
             change = profile[self._next]
             self._next += 1
             self.set_speed(change.speed, change.acceleration)
+        self._t_next = profile[self._next].time if self._next < len(profile) else math.inf
+        return self._t_next
 
     def step(self, dt: float) -> None:
         """Advance one cycle of ``dt`` seconds, applying the profile changes that fall in it."""
-        t0 = self.time
+        t0 = self._t_base + self._steps * self._dt  # self.time, inline (per cycle)
         if dt != self._dt:
             self._t_base, self._steps, self._dt = t0, 0, dt
         self._steps += 1
-        t_end = self.time
+        t_end = self._t_base + self._steps * self._dt
         self.cycle_start_time = t0
-        self.cycle_start_position = self.position
+        self.cycle_start_position = p = self.position
         self._bounds_valid = False
-        offs, hs, ps, vs, accs = self._seg_off, self._seg_h, self._seg_p, self._seg_v, self._seg_a
-        offs.clear()
-        hs.clear()
-        ps.clear()
-        vs.clear()
-        accs.clear()
-        profile = self._profile
+        self._segs = segs = []
         t = t0
-        p = self.position
+        # the next change's time, inf when none is left: "t_next <= t" and "t_next - t < h"
+        # are then false, as the profile-length checks they stand for
+        t_next = self._t_next
         while True:
-            self._apply_due(t)
+            if t_next <= t:
+                t_next = self._apply_due(t)
             if t >= t_end:
                 break
             v = self.velocity
+            target = self.target_speed
             h = t_end - t
             reaches_end = True
-            if self._next < len(profile) and profile[self._next].time - t < h:
-                h = profile[self._next].time - t
+            if t_next - t < h:
+                h = t_next - t
                 reaches_end = False
-            a = self._current_acceleration()
+            a = 0.0 if v == target else math.copysign(self._ramp, target - v)  # _current_acceleration
             ramp_ends = False
             if a != 0.0:
-                t_ramp = abs(self.target_speed - v) / self._ramp
+                t_ramp = abs(target - v) / self._ramp
                 if t_ramp <= h:
                     h = t_ramp
                     ramp_ends = True
                     reaches_end = t_ramp == t_end - t
-            offs.append(t - t0)
-            hs.append(h)
-            ps.append(p)
-            vs.append(v)
-            accs.append(a)
+            segs.append((t - t0, h, p, v, a))
             p += v * h + 0.5 * a * h * h
             # A ramp ends exactly on its target speed, not on a rounded sum.
-            self.velocity = self.target_speed if ramp_ends else v + a * h
+            self.velocity = target if ramp_ends else v + a * h
             t = t_end if reaches_end else t + h
         self.position = p
         self.acceleration = self._current_acceleration()
 
     # -- motion inside the last cycle ----------------------------------------------------------
 
-    def _segment(self, fraction: float) -> tuple[int, float]:
+    def _segment(self, fraction: float) -> tuple[tuple[float, float, float, float, float], float]:
         t = fraction * self._dt
-        i = len(self._seg_off) - 1
-        while i > 0 and self._seg_off[i] > t:
+        segs = self._segs
+        i = len(segs) - 1
+        while i > 0 and segs[i][0] > t:
             i -= 1
-        return i, t - self._seg_off[i]
+        return segs[i], t - segs[i][0]
 
     def position_at(self, fraction: float) -> float:
         """Exact position at ``fraction`` (0..1) of the last cycle."""
-        if not self._seg_off or fraction >= 1.0:
+        if not self._segs or fraction >= 1.0:
             return self.position
-        i, tau = self._segment(fraction)
-        return self._seg_p[i] + self._seg_v[i] * tau + 0.5 * self._seg_a[i] * tau * tau
+        (_, _, p0, v0, a), tau = self._segment(fraction)
+        return p0 + v0 * tau + 0.5 * a * tau * tau
 
     def velocity_at(self, fraction: float) -> float:
         """Exact line speed at ``fraction`` (0..1) of the last cycle."""
-        if not self._seg_off or fraction >= 1.0:
+        if not self._segs or fraction >= 1.0:
             return self.velocity
-        i, tau = self._segment(fraction)
-        return self._seg_v[i] + self._seg_a[i] * tau
+        (_, _, _, v0, a), tau = self._segment(fraction)
+        return v0 + a * tau
 
     def _pieces(self, i: int) -> tuple[tuple[float, float, float, float], ...]:
         """Monotonic pieces (t_a, t_b, p_a, p_b) of segment ``i``: split at a turning point."""
-        h, p0, v0, a = self._seg_h[i], self._seg_p[i], self._seg_v[i], self._seg_a[i]
-        p_end = self._seg_p[i + 1] if i + 1 < len(self._seg_p) else self.position
-        if a != 0.0:
-            t_turn = -v0 / a
-            if 0.0 < t_turn < h:
-                p_turn = p0 + v0 * t_turn + 0.5 * a * t_turn * t_turn
-                return ((0.0, t_turn, p0, p_turn), (t_turn, h, p_turn, p_end))
+        segs = self._segs
+        _, h, p0, v0, a = segs[i]
+        p_end = segs[i + 1][2] if i + 1 < len(segs) else self.position
+        t_turn = _turning_point(segs[i])
+        if t_turn is not None:
+            p_turn = p0 + v0 * t_turn + 0.5 * a * t_turn * t_turn
+            return ((0.0, t_turn, p0, p_turn), (t_turn, h, p_turn, p_end))
         return ((0.0, h, p0, p_end),)
 
     def position_bounds(self) -> tuple[float, float]:
         """Lowest and highest position during the last cycle."""
         if not self._bounds_valid:
+            segs = self._segs
             lo = hi = self.position
-            for i in range(len(self._seg_p)):
-                for _, _, pa, pb in self._pieces(i):
-                    lo, hi = min(lo, pa, pb), max(hi, pa, pb)
+            if len(segs) == 1 and _turning_point(segs[0]) is None:
+                # the usual cycle, one monotonic segment, is one piece from p0 to position:
+                # the min/max below, written as comparisons
+                p0 = segs[0][2]
+                lo = p0 if p0 < lo else lo
+                hi = p0 if p0 > hi else hi
+            else:
+                for i in range(len(segs)):
+                    for _, _, pa, pb in self._pieces(i):
+                        lo, hi = min(lo, pa, pb), max(hi, pa, pb)
             self._lo, self._hi = lo, hi
             self._bounds_valid = True
         return self._lo, self._hi
@@ -208,11 +222,11 @@ class MaterialLine:
         if x <= lo or x > hi:
             return NO_CROSSINGS
         events: list[Crossing] = []
-        for i in range(len(self._seg_p)):
+        for i, (off, _, p0, v0, a) in enumerate(self._segs):
             for ta, tb, pa, pb in self._pieces(i):
                 if (pa >= x) != (pb >= x):
-                    tau = quadratic_root(self._seg_p[i], self._seg_v[i], self._seg_a[i], x, ta, tb)
-                    events.append(((self._seg_off[i] + tau) / self._dt, 1 if pb >= x else -1))
+                    tau = quadratic_root(p0, v0, a, x, ta, tb)
+                    events.append(((off + tau) / self._dt, 1 if pb >= x else -1))
         return tuple(events)
 
 
@@ -256,6 +270,7 @@ class SlipContact:
         self.source = source
         self._origin = float(source.position)  # type: ignore[attr-defined]
         self._slip = float(slip)
+        self._scale = 1.0 - self._slip  # the contact's travel per surface travel, without jitter
         self._sigma = float(slip_jitter)
         self._cell = float(jitter_length)
         self._w_base = float(position)
@@ -281,6 +296,7 @@ class SlipContact:
         self._w_base = self._wheel(s)
         self._s_base = s
         self._slip = float(slip)
+        self._scale = 1.0 - self._slip
 
     # -- travel <-> contact position -----------------------------------------------------------
 
@@ -317,10 +333,10 @@ class SlipContact:
 
     def _wheel(self, s: float) -> float:
         if self._sigma == 0.0:  # no jitter: both integrals are 0.0 (x - (0.0 - 0.0) is x)
-            return self._w_base + (1.0 - self._slip) * (s - self._s_base)
+            return self._w_base + self._scale * (s - self._s_base)
         return (
             self._w_base
-            + (1.0 - self._slip) * (s - self._s_base)
+            + self._scale * (s - self._s_base)
             - (self._jitter_integral(s) - self._jitter_integral(self._s_base))
         )
 
@@ -328,7 +344,7 @@ class SlipContact:
         """Travel at which the contact reaches ``w`` (the contact's motion is strictly increasing
         in the travel, so this is unique); deterministic, so a threshold maps to the same travel
         in every cycle."""
-        guess = self._s_base + (w - self._w_base) / (1.0 - self._slip)
+        guess = self._s_base + (w - self._w_base) / self._scale
         if self._sigma == 0.0:
             return guess
         L = self._cell
@@ -337,24 +353,25 @@ class SlipContact:
             k -= 1
         while self._wheel((k + 1) * L) <= w:
             k += 1
-        return k * L + (w - self._wheel(k * L)) / (1.0 - self._slip - self._cell_jitter(k))
+        return k * L + (w - self._wheel(k * L)) / (self._scale - self._cell_jitter(k))
 
     # -- position source -----------------------------------------------------------------------
 
     @property
     def position(self) -> float:
         """Contact position in user units (e.g. the measuring wheel's rolled-off length)."""
-        return self._wheel(self._travel(self.source.position))  # type: ignore[attr-defined]
+        return self._wheel(self.source.position - self._origin)  # type: ignore[attr-defined]  # _travel, inline
 
     @property
     def velocity(self) -> float:
         s = self._travel(self.source.position)  # type: ignore[attr-defined]
         k = math.floor(s / self._cell)
-        return self.source.velocity * (1.0 - self._slip - self._cell_jitter(k))  # type: ignore[attr-defined]
+        return self.source.velocity * (self._scale - self._cell_jitter(k))  # type: ignore[attr-defined]
 
     def position_bounds(self) -> tuple[float, float]:
         lo, hi = self.source.position_bounds()  # type: ignore[attr-defined]
-        return self._wheel(self._travel(lo)), self._wheel(self._travel(hi))
+        origin = self._origin  # (_travel, inline)
+        return self._wheel(lo - origin), self._wheel(hi - origin)
 
     def crossings(self, x: float) -> tuple[Crossing, ...]:
         return self.source.crossings(self._origin + self._travel_for(x))  # type: ignore[attr-defined]
