@@ -8,6 +8,7 @@ cutting 1 m pieces at 60/48 m/min, scope on and off. Reference: real time (1.0).
 from __future__ import annotations
 
 import statistics
+import sys
 import time
 from pathlib import Path
 
@@ -32,6 +33,29 @@ def _running(trace: bool) -> Machine:
     return m
 
 
+def bytecodes_per_cycle(cycles: int = 1000) -> float:
+    """Python bytecode instructions the running line executes per cycle (every task, scope off),
+    counted with sys.settrace over one cut period: a cost figure that, unlike the wall clock,
+    is the same on every machine and every run (C calls such as math.floor count as one)."""
+    m = _running(False)
+    count = 0
+
+    def tracer(frame, event, arg):  # noqa: ANN001 - sys.settrace signature
+        nonlocal count
+        if event == "call":
+            frame.f_trace_opcodes = True
+        elif event == "opcode":
+            count += 1
+        return tracer
+
+    sys.settrace(tracer)
+    try:
+        m.scheduler.run(cycles)
+    finally:
+        sys.settrace(None)
+    return count / cycles
+
+
 def bench_fs701(runs: int = 5) -> None:
     print("fs701: flying shear line (examples/flying_shear.toml), running line after commissioning, T = 1 ms")
     for trace in (False, True):
@@ -49,6 +73,7 @@ def bench_fs701(runs: int = 5) -> None:
         print(f"  scope {'on ' if trace else 'off'}: {statistics.median(factors):7.1f}x real time, "
               f"{statistics.median(costs):6.1f} us per cycle "
               f"(median of {runs} runs of {TIMED:g} s simulated; min {min(factors):.1f}x, max {max(factors):.1f}x)")
+    print(f"  Python bytecodes per cycle (deterministic, scope off): {bytecodes_per_cycle():.0f}")
 
 
 if __name__ == "__main__":

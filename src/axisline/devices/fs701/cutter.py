@@ -276,8 +276,21 @@ _ALIASES: dict[str, tuple[str, ...]] = {
 }
 
 
+class _DerivedSettings:
+    """The values CutterSettings derives from its fields (`_derive`): declared here, in a base
+    that is not a dataclass, so that they are instance attributes and not fields."""
+
+    version: int  # counts the writes
+    line_counts_per_lu: float
+    cut_counts_per_lu: float
+    ratio_error: bool
+    v_max_line: float
+    sync_ratio: float
+    s_ramps: bool
+
+
 @dataclass
-class CutterSettings:
+class CutterSettings(_DerivedSettings):
     """The parameters the cut cycle and the position loop use.
 
     Field names are the snake_case of the manual's parameter names (§11 table name where table
