@@ -57,10 +57,14 @@ class Scheduler:
         name: str,
         fn: Callable[[int], object],
         stage: Stage,
-        every: int = 1,
-        phase: int = 0,
+        every: object = 1,
+        phase: object = 0,
     ) -> Task:
-        """Register ``fn(cycle)``; within a stage, tasks run in registration order."""
+        """Register ``fn(cycle)``; within a stage, tasks run in registration order.
+
+        ``every`` (>= 1) and ``phase`` (0..every-1) are integers; they are typed ``object``
+        because the checks below, not the signature, refuse anything else with a ValueError
+        that names them (a compiled signature would raise a bare TypeError first)."""
         if not isinstance(name, str) or not name:
             raise ValueError(f"task name must be a non-empty string, got {name!r}")
         if name in self._tasks:

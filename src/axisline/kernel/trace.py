@@ -151,13 +151,15 @@ class Trace:
 
     def __init__(
         self,
-        capacity: int,
-        decimation: int = 1,
+        capacity: object,
+        decimation: object = 1,
         mode: Literal["linear", "ring"] = "linear",
         *,
-        period_us: int = 1000,
+        period_us: object = 1000,
     ) -> None:
-        self.capacity = _check_count("trace capacity", capacity)
+        # capacity, decimation, period_us: integers, typed `object` because the checks refuse
+        # anything else with an error naming the setting (not a compiled signature's TypeError)
+        self.capacity = capacity = _check_count("trace capacity", capacity)
         self.decimation = _check_count("trace decimation", decimation)
         if mode not in ("linear", "ring"):
             raise ValueError(f"trace mode must be 'linear' or 'ring', got {mode!r}")

@@ -35,6 +35,8 @@ import math
 from abc import ABC, abstractmethod
 from typing import Any, Literal
 
+from mypy_extensions import mypyc_attr
+
 from axisline.motion.profiles import Limits, Profile, State, plan_velocity
 
 __all__ = [
@@ -76,6 +78,8 @@ def _quantise(position: float, counts_per_unit: float) -> int:
     return math.floor(position * counts_per_unit + 0.5)
 
 
+# (compiled: the tests' and the devices' own masters may subclass it)
+@mypyc_attr(allow_interpreted_subclasses=True)
 class Master(ABC):
     """A master source; see the module docstring.
 

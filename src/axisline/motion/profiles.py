@@ -163,12 +163,12 @@ class Profile:
             )
         tau = self._tau[i]
         w = math.pi / tau
-        s, c = math.sin(w * dt), math.cos(w * dt)
+        sn, c = math.sin(w * dt), math.cos(w * dt)
         return (
             p + v * dt + a * dt * dt / 2.0 + x / 2.0 * (dt * dt / 2.0 + (c - 1.0) / (w * w)),
-            v + a * dt + x / 2.0 * (dt - s / w),
+            v + a * dt + x / 2.0 * (dt - sn / w),
             a + x / 2.0 * (1.0 - c),
-            x / 2.0 * w * s,
+            x / 2.0 * w * sn,
         )
 
     def sample_many(self, ts):
@@ -413,7 +413,8 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
             return
         n = _GRID if hi > lo else 0
         xs = [lo + (hi - lo) * i / n for i in range(n)] + [hi] if n else [lo]
-        prev_x = prev_f = None
+        prev_x: float | None = None
+        prev_f: float | None = None
         for i, x in enumerate(xs):
             at_edge = edge and i == 0
             fx = f(x, at_edge)
@@ -422,7 +423,7 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
                 continue
             if fx == 0.0:
                 make(x, at_edge)
-            elif prev_f is not None and (fx > 0.0) != (prev_f > 0.0):
+            elif prev_f is not None and prev_x is not None and (fx > 0.0) != (prev_f > 0.0):
                 make(_illinois(lambda y: f(y, False), prev_x, x, prev_f, fx), False)
             prev_x, prev_f = x, fx
 

@@ -689,7 +689,7 @@ class Correction:
         self.max_per_cycle = _check_limit("max_per_cycle", max_per_cycle)
         if (enable_from is None) != (enable_to is None):
             raise ValueError("give both enable_from and enable_to, or neither")
-        if enable_from is not None:
+        if enable_from is not None and enable_to is not None:  # (both or neither: checked above)
             if master_cycle is None:
                 raise ValueError("a correction range needs the master_cycle")
             self.master_cycle = _check_positive("master_cycle", master_cycle)

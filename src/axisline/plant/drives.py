@@ -7,8 +7,9 @@ command differs (velocity or volts for the servo, a microstep count for the step
 from __future__ import annotations
 
 import math
-from typing import Literal, Protocol, runtime_checkable
+from typing import Literal
 
+from .interfaces import Drive
 from .kinematics import NO_CROSSINGS, Crossing, bisect_crossing, linear_crossing
 
 __all__ = ["Drive", "ServoDrive", "StepperDrive", "VelocityLoop", "ANALOG_LIMIT_VOLTS"]
@@ -21,35 +22,6 @@ VelocityLoop = Literal["first_order", "second_order"]
 # Sub-cycle pieces the servo's motion is split into when sensors ask for crossings: a turning
 # point is searched inside each, so one reversal per quarter cycle is resolved exactly.
 _SERVO_PIECES = 4
-
-
-@runtime_checkable
-class Drive(Protocol):
-    """What the kernel needs from any drive: enable it, advance it, read its motion."""
-
-    @property
-    def enabled(self) -> bool: ...
-
-    @property
-    def position(self) -> float:
-        """Actual position in user units."""
-        ...
-
-    @property
-    def velocity(self) -> float:
-        """Actual velocity in user units/s."""
-        ...
-
-    @property
-    def acceleration(self) -> float:
-        """Actual acceleration in user units/s^2."""
-        ...
-
-    def enable(self, on: bool) -> None: ...
-
-    def step(self, dt: float) -> None:
-        """Advance the drive by one cycle of ``dt`` seconds with the command held."""
-        ...
 
 
 class ServoDrive:

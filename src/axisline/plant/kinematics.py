@@ -21,7 +21,8 @@ two samples (exact for constant velocity).
 from __future__ import annotations
 
 import math
-from typing import Protocol, runtime_checkable
+
+from .interfaces import Crossing, PositionSource, TracedSource
 
 __all__ = [
     "Crossing",
@@ -35,27 +36,7 @@ __all__ = [
     "quadratic_root",
 ]
 
-Crossing = tuple[float, int]
-"""(fraction of the cycle in [0, 1], direction +1 rising / -1 falling)."""
-
 NO_CROSSINGS: tuple[Crossing, ...] = ()
-
-
-@runtime_checkable
-class PositionSource(Protocol):
-    """Anything with a position in user units (a drive, a material line, a wheel)."""
-
-    @property
-    def position(self) -> float: ...
-
-
-@runtime_checkable
-class TracedSource(PositionSource, Protocol):
-    """A position source that knows its exact motion during the last plant step."""
-
-    def crossings(self, x: float) -> tuple[Crossing, ...]: ...
-
-    def position_bounds(self) -> tuple[float, float]: ...
 
 
 def linear_crossing(p0: float, p1: float, x: float) -> tuple[Crossing, ...]:

@@ -14,7 +14,7 @@ import math
 import pytest
 
 from axisline.devices.fs701.cutter import CutKind, CutState, CutterSettings, FS701Error
-from axisline.devices.fs701.printmark import PrintMarkControl
+from axisline.devices.fs701.printmark import OFFSET_SIGN, PrintMarkControl
 from axisline.plant import PrintMarks
 
 from .test_cutter_rig import CutterRig, Tool
@@ -98,7 +98,7 @@ def test_printmark_offset_moves_the_cut_forward_p1(sign):
     rig.run(7.0)
     offs = nearest_offsets(cut_points(rig), [500.0 + 1500.0 * k for k in range(20)])
     assert len(offs) >= 3 and all(o == pytest.approx(-40.0 * sign, abs=0.5) for o in offs)
-    assert PrintMarkControl.offset_sign == 1
+    assert OFFSET_SIGN == 1 and PrintMarkControl(rig.cutter).offset_sign == 1  # the default reading
 
 
 def test_printmark_edge_selects_the_falling_edge():

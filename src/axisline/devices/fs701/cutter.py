@@ -168,6 +168,8 @@ from dataclasses import dataclass, fields
 from enum import IntEnum
 from typing import Any, Callable
 
+from mypy_extensions import mypyc_attr
+
 from axisline.motion.axis import Axis, AxisState
 from axisline.motion.master import EncoderMaster, VirtualMaster
 from axisline.motion.profiles import Limits, Profile, State, plan, plan_velocity
@@ -276,6 +278,7 @@ _ALIASES: dict[str, tuple[str, ...]] = {
 }
 
 
+@mypyc_attr(native_class=False)  # (compiled: a plain Python class, see CutterSettings)
 class _DerivedSettings:
     """The values CutterSettings derives from its fields (`_derive`): declared here, in a base
     that is not a dataclass, so that they are instance attributes and not fields."""
@@ -289,6 +292,8 @@ class _DerivedSettings:
     s_ramps: bool
 
 
+# a plain Python class also when this module is compiled: _derive writes its __dict__
+@mypyc_attr(native_class=False)
 @dataclass
 class CutterSettings(_DerivedSettings):
     """The parameters the cut cycle and the position loop use.
@@ -383,15 +388,10 @@ class CutterSettings(_DerivedSettings):
         objects). Ana-Out Gain values above 320 are read as the raw register (1000 = 10.00 V).
         """
         values: dict[str, Any] = {}
-        get: Callable[[str], Any]
-        if isinstance(source, dict):
-            get = source.get
-        else:
-            def get(name: str) -> Any:
-                return getattr(source, name, None)
+        mapping = isinstance(source, dict)
         for f in fields(cls):
             for name in (f.name, *_ALIASES.get(f.name, ())):
-                v = get(name)
+                v = source.get(name) if mapping else getattr(source, name, None)
                 if v is not None:
                     v = getattr(v, "value", v)
                     values[f.name] = v
@@ -498,9 +498,48 @@ def s_ramp_limits(s_ramp: bool, acceleration: float, dv: float) -> tuple[str, Li
     return "jerk", Limits(v=_BIG, a=peak, d=peak, j=j)
 
 
+# ---------------------------------------------------------------------- cycle geometry
+# (functions of the settings, shared by the cutter and the envelope calculator)
+
+
+def approach_geometry(s: CutterSettings, V: float) -> tuple[Profile | None, float, float, float]:
+    """(profile in tau, tau_a, s_sync, master travel during the ramp) for line speed V (LU/s)."""
+    R = s.sync_ratio
+    vs = R * V
+    if vs <= _V_EPS:
+        return None, 0.0, 0.0, 0.0
+    shape, lim = s_ramp_limits(s.s_ramps, s.acceleration_1, vs)
+    prof = plan_velocity(shape, State(0.0, 0.0, 0.0), vs, lim)
+    tau_a = prof.duration
+    s_sync = prof.sample(tau_a)[0]  # carriage travel at the end of the ramp
+    return prof, tau_a, s_sync, V * tau_a
+
+
+def v_return_max(s: CutterSettings, line_speed: float) -> float:
+    """Peak return speed (LU/s): Abs. Return Speed, else Rel. Return Speed x line speed, at
+    least the reverse jog speed (C4/C19)."""
+    if s.abs_return_speed > 0:
+        return s.abs_return_speed / 60.0
+    v_floor = s.v_max_line * s.jog_speed_rev / 100.0  # C4/C19
+    return max(s.return_speed * abs(line_speed), v_floor)
+
+
+def return_profile(s: CutterSettings, start: State, home: float, v_r: float) -> Profile | None:
+    """The return from `start` to `home` at speed `v_r` with Acc./Dec. 2 (None: already home)."""
+    if abs(start.p - home) < 1e-12 and start.v == 0.0 and start.a == 0.0:
+        return None
+    a2, d2 = float(s.acceleration_2), float(s.deceleration_2)
+    if s.s_ramps:
+        j = S_RAMP_PEAK_FACTOR * max(a2, d2) / (_S_JERK_FRACTION * v_r / max(a2, d2))
+        return plan("jerk", start, State(home, 0.0), Limits(v=v_r, a=1.25 * a2, d=1.25 * d2, j=j))
+    return plan("trapezoid", start, State(home, 0.0), Limits(v=v_r, a=a2, d=d2))
+
+
 # ====================================================================== inputs / outputs
 
 
+# a plain Python class also when compiled: the personality sets the fields through __dict__
+@mypyc_attr(native_class=False)
 @dataclass
 class CutterInputs:
     """Command inputs (manual §4.1.1), already OR'ed over hardware / serial / CAN (io_assign).
@@ -703,6 +742,7 @@ class CutRecord:
     material_point: float  # LU: material travel at which the cut point passed the tool origin
 
 
+@mypyc_attr(native_class=False)  # (per cut, not per cycle: stays open to wrapping, e.g. in tests)
 class CutRecorder:
     """Collects `CutRecord`s: call `cut(...)` at the instant the blade passes the material.
 
@@ -1198,17 +1238,7 @@ class Cutter:
         return CutInfo(self._cut_number + 1, kind, self._length_target_mc(), length)
 
     def _approach_geometry(self, V: float) -> tuple[Profile | None, float, float, float]:
-        """(profile in tau, tau_a, s_sync, master travel during the ramp) for line speed V (LU/s)."""
-        s = self.settings
-        R = s.sync_ratio
-        vs = R * V
-        if vs <= _V_EPS:
-            return None, 0.0, 0.0, 0.0
-        shape, lim = s_ramp_limits(s.s_ramps, s.acceleration_1, vs)
-        prof = plan_velocity(shape, State(0.0, 0.0, 0.0), vs, lim)
-        tau_a = prof.duration
-        s_sync = prof.sample(tau_a)[0]  # carriage travel at the end of the ramp
-        return prof, tau_a, s_sync, V * tau_a
+        return approach_geometry(self.settings, V)
 
     def anticipation(self, line_speed_lu_s: float) -> float:
         """Anticipation distance (LU): the cut point is this far upstream of home at the start.
@@ -1222,7 +1252,7 @@ class Cutter:
         tau_a = vs / max(float(self.settings.acceleration_1), 1.0)  # (the register's minimum is 1)
         return V * tau_a - 0.5 * vs * tau_a
 
-    def _start_mc(self, target_mc: int, V: float) -> float:
+    def _start_mc(self, target_mc: float, V: float) -> float:
         """Master position (milli-counts) at which the approach to target_mc must start."""
         a = self.anticipation(V)
         return target_mc - a * self.settings.pulses_line_1000
@@ -1520,11 +1550,7 @@ class Cutter:
     # ------------------------------------------------------------------ deceleration and return
 
     def _v_return_max(self) -> float:
-        s = self.settings
-        if s.abs_return_speed > 0:
-            return s.abs_return_speed / 60.0
-        v_floor = s.v_max_line * s.jog_speed_rev / 100.0  # C4/C19
-        return max(s.return_speed * abs(self.master.velocity), v_floor)
+        return v_return_max(self.settings, self.master.velocity)
 
     def _time_to_next_start(self) -> float:
         """Seconds until the next approach must start (inf: unknown / line stands)."""
@@ -1532,6 +1558,7 @@ class Cutter:
         if V <= _V_EPS or not self.inputs.start_stop:
             return math.inf
         s = self.settings
+        target: float | None
         if s.cutting_mode == 1:
             target = self._length_target_mc()
         else:
@@ -1542,15 +1569,8 @@ class Cutter:
         return (start - self.master.counts * 1000) / (s.pulses_line_1000 * V)
 
     def _return_profile(self, p_from: float, v_r: float, state: State | None = None) -> Profile | None:
-        s = self.settings
         start = state if state is not None else State(p_from, 0.0, 0.0)
-        if abs(start.p - self.home_position) < 1e-12 and start.v == 0.0 and start.a == 0.0:
-            return None
-        a2, d2 = float(s.acceleration_2), float(s.deceleration_2)
-        if s.s_ramps:
-            j = S_RAMP_PEAK_FACTOR * max(a2, d2) / (_S_JERK_FRACTION * v_r / max(a2, d2))
-            return plan("jerk", start, State(self.home_position, 0.0), Limits(v=v_r, a=1.25 * a2, d=1.25 * d2, j=j))
-        return plan("trapezoid", start, State(self.home_position, 0.0), Limits(v=v_r, a=a2, d=d2))
+        return return_profile(self.settings, start, self.home_position, v_r)
 
     @staticmethod
     def _return_time(dist: float, v: float, a2: float, d2: float) -> float:

@@ -27,9 +27,9 @@ Maximum Position in automatic operation, manual §4.3.3, so this is a mechanical
 Not included: the Gap motion (Start Gap), the Cut Window settling (Sync Samples cycles) and the
 control-cycle quantisation (a few ms): keep a small margin.
 
-Reuse: the ramp geometry is `Cutter._approach_geometry`, the return speed limit
-`Cutter._v_return_max` and the return profile `Cutter._return_profile`, called on a minimal
-stand-in of a cutter (`_Plan`), so a change of the cut cycle changes the envelope too.
+Reuse: the ramp geometry (`approach_geometry`), the return speed limit (`v_return_max`) and
+the return profile (`return_profile`) are the cutter's own functions, so a change of the cut
+cycle changes the envelope too.
 
 CLI (wired by cli.py): `axisline fs701 envelope PARAMS [--png OUT] [--cut-time S] [--speeds A,B,..]`
 -> `envelope_command(params_file, out_png, cut_time, speeds)`.
@@ -42,7 +42,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterable, NamedTuple
 
-from .cutter import Cutter, CutterSettings
+from axisline.motion.profiles import State
+
+from .cutter import CutterSettings, approach_geometry, return_profile, v_return_max
 
 __all__ = ["EnvelopePoint", "CycleBudget", "cycle_budget", "envelope", "feasible", "plot_envelope", "envelope_command"]
 
@@ -88,15 +90,6 @@ class CycleBudget:
         return max(parts, key=parts.get)  # type: ignore[arg-type]
 
 
-class _Plan:
-    """The attributes of a Cutter that its planning methods read (settings, home, line speed)."""
-
-    def __init__(self, settings: CutterSettings, line_speed: float) -> None:
-        self.settings = settings
-        self.home_position = 0.0
-        self.master = type("M", (), {"velocity": line_speed})()
-
-
 def _settings(settings: Any) -> CutterSettings:
     return settings if isinstance(settings, CutterSettings) else CutterSettings.from_parameters(settings)
 
@@ -109,14 +102,13 @@ def cycle_budget(settings: Any, line_speed: float, cut_time: float = 0.0, home: 
     stroke = float(s.maximum_position) - home
     if V <= 0.0:
         return CycleBudget(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, stroke)
-    pl = _Plan(s, V)
-    _, tau_a, s_sync, _ = Cutter._approach_geometry(pl, V)  # type: ignore[arg-type]
+    _, tau_a, s_sync, _ = approach_geometry(s, V)
     vs = s.sync_ratio * V
     t_sync = s.synchron_time / 1000.0 + max(float(cut_time), 0.0)
     t_dec = vs / max(float(s.deceleration_1), 1.0)
     travel = s_sync + vs * t_sync + 0.5 * vs * t_dec
-    v_r = Cutter._v_return_max(pl)  # type: ignore[arg-type]
-    ret = Cutter._return_profile(pl, travel, v_r)  # type: ignore[arg-type]
+    v_r = v_return_max(s, V)
+    ret = return_profile(s, State(travel, 0.0, 0.0), 0.0, v_r)
     t_ret = 0.0 if ret is None else ret.duration
     return CycleBudget(V, tau_a, t_sync, t_dec, t_ret, travel, v_r, stroke)
 

@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, cast
 
 __all__ = ["Shear", "CutMeasurement", "CutMeter", "BatchJob", "batch_statistics"]
 
@@ -275,10 +275,11 @@ def _std(xs: list[float]) -> float:
 def batch_statistics(records: list[CutMeasurement]) -> dict[str, Any]:
     """The batch summary: length errors (LU and increments), tolerance, print-mark offsets."""
     pieces = [r for r in records if r.error_lu is not None]
-    e_lu = [r.error_lu for r in pieces]  # type: ignore[misc]
-    e_c = [r.error_counts for r in pieces]  # type: ignore[misc]
-    const = [abs(r.error_counts) for r in pieces if r.constant_speed]  # type: ignore[arg-type]
-    ramp = [abs(r.error_counts) for r in pieces if not r.constant_speed]  # type: ignore[arg-type]
+    # (a piece has both errors: cast, not a filter)
+    e_lu = [cast(float, r.error_lu) for r in pieces]
+    e_c = [cast(float, r.error_counts) for r in pieces]
+    const = [abs(e) for r, e in zip(pieces, e_c) if r.constant_speed]
+    ramp = [abs(e) for r, e in zip(pieces, e_c) if not r.constant_speed]
     checked = [r for r in records if r.in_tolerance is not None]
     marks = [r.mark_offset_counts for r in records if r.mark_offset_counts is not None]
 

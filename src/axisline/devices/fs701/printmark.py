@@ -29,7 +29,7 @@ tests/devices/fs701/test_cutter_printmark.py):
  P1 Printmark Offset sign (spec §2.9 [AMBIGUOUS]): the manual's words: "A positive value moves
     the cut forward (leading the printmark)": forward is the line's direction, so the cut lies
     downstream of the mark and reaches the tool earlier: T = x + P2C - offset.
-    `PrintMarkControl.offset_sign = -1` gives the other reading.
+    `OFFSET_SIGN` (or one unit's `printmarks.offset_sign`) = -1 gives the other reading.
     Test: test_printmark_offset_moves_the_cut_forward_p1.
  P2 Printmark Window (spec §2.10 [AMBIGUOUS]): the setting is the FULL width (the window is
     +-W/2 around the expected mark, "a symmetric window"); the window is linear in the master
@@ -87,12 +87,16 @@ FIFO_CAPACITY = 64
 _EDGE_BUFFER = 64  # print mark edges per cycle kept until the tick
 
 
+#: P1: +1: a positive Printmark Offset moves the cut downstream of the mark (the default of
+#: every PrintMarkControl.offset_sign; -1 gives the other reading)
+OFFSET_SIGN = 1
+
+
 class PrintMarkControl:
     """Print mark registration and the cut-position FIFO of one Cutter."""
 
-    offset_sign = 1  # P1: +1: a positive Printmark Offset moves the cut downstream of the mark
-
     def __init__(self, cutter: Any) -> None:
+        self.offset_sign = OFFSET_SIGN
         self.cutter = cutter
         self.period = cutter.period
         self.channel = ChannelMotion(0.0)
