@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from functools import partial
 from operator import attrgetter
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, cast
 
 import numpy as np
 
@@ -295,11 +295,11 @@ class Machine:
             out["material.position"] = (lambda: mat.position, "", float)
             out["material.speed"] = (lambda: mat.velocity, "/s", float)
         for name, sensor in self.sensors.items():
-            out[f"{name}.state"] = (lambda sensor=sensor: bool(sensor.state), "", bool)
+            out[f"{name}.state"] = (partial(_sensor_level, sensor), "", bool)
         for name in self.config.io.inputs:
-            out[f"io.{name}"] = (lambda name=name: self.io.read(name), "", bool)
+            out[f"io.{name}"] = (partial(self.io.read, name), "", bool)
         for name in self.config.io.outputs:
-            out[f"io.{name}"] = (lambda name=name: self.io.output(name), "", bool)
+            out[f"io.{name}"] = (partial(self.io.output, name), "", bool)
         for name, master in self.masters.items():
             out[f"{name}.position"] = (_getter(master, "position"), "", float)
             out[f"{name}.velocity"] = (_getter(master, "velocity"), "/s", float)
@@ -315,7 +315,7 @@ class Machine:
         for name, u in self.units.items():
             ax, dr, unit = u.axis, u.drive, u.config.unit
             # attrgetter/partial are C calls: the scope samples dozens of channels per cycle
-            sig = {
+            sig: dict[str, tuple[Callable[[], Any], str, type]] = {
                 "command_position": (_getter(ax, "command_position"), unit, float),
                 "actual_position": (_getter(ax, "actual_position"), unit, float),  # axis frame
                 "command_velocity": (_getter(ax, "command_velocity"), f"{unit}/s", float),
@@ -325,7 +325,7 @@ class Machine:
                 "command_jerk": (_getter(ax, "command_jerk"), f"{unit}/s^3", float),
                 "following_error": (_getter(ax, "following_error"), unit, float),
                 "velocity_output": (_getter(u, "velocity_output"), f"{unit}/s", float),
-                "state": (lambda ax=ax: _STATE_CODE[ax.state], "", int),
+                "state": (partial(_state_code, ax), "", int),
                 "enabled": (_getter(dr, "enabled"), "", bool),
             }
             for k, v in sig.items():
@@ -368,13 +368,15 @@ class Machine:
     def axes(self) -> dict[str, Axis]:
         return {n: u.axis for n, u in self.units.items()}
 
-    def _issue(self, axis: str, command: str, kwargs: dict[str, Any]) -> Any:
-        """Give an axis command from inside the cycle (job, personality)."""
+    def _issue(self, axis: str | None, command: str, kwargs: dict[str, Any]) -> Any:
+        """Give an axis command from inside the cycle (job, personality); `axis` is None for
+        a master command (set_master_velocity)."""
         if command in _SYNC_COMMANDS:
             try:
                 return self._sync_command(axis, command, kwargs)
             except ValueError as e:  # an infeasible or bad request: the step fails, the cycle goes on
                 return _Failed(str(e))
+        assert axis is not None  # (every command but set_master_velocity names its axis)
         ax = self.units[axis].axis
         if command == "home":
             return ax.home(self._homing(axis, kwargs))
@@ -383,12 +385,13 @@ class Machine:
     def _sync_command(self, axis: str | None, command: str, kw: dict[str, Any]) -> Any:
         """Couplings of the job (gear, cam) and master commands."""
         if command == "set_master_velocity":
-            master = self.masters[kw["master"]]
+            master: Any = self.masters[kw["master"]]  # a virtual master or a time base
             if hasattr(master, "set_velocity"):
                 master.set_velocity(kw["velocity"])
                 return SyncHandle(None, lambda: master.in_velocity)
             master.set_speed(kw["velocity"])
             return SyncHandle(None, lambda: True)
+        assert axis is not None  # (every command but set_master_velocity names its axis)
         ax = self.units[axis].axis
         if command == "gear_in":
             gear = Gear(self.masters[kw["master"]], ax, kw["numerator"], kw["denominator"])
@@ -410,11 +413,11 @@ class Machine:
             self._followers[axis] = follower
             return SyncHandle(ax.start_sync(follower), lambda: follower.synchronous)
         if command == "cam_out":
-            follower = self._followers.get(axis)
-            if follower is None or ax.state is not AxisState.SYNCHRONIZED_MOTION:
+            coupled = self._followers.get(axis)
+            if coupled is None or ax.state is not AxisState.SYNCHRONIZED_MOTION:
                 raise ValueError(f"cam_out: axis {axis!r} follows no cam")
-            follower.decouple(kw["decoupling"], kw["braking"], kw["standstill"])
-            return SyncHandle(ax.active_command, lambda: follower.state is CamState.DECOUPLED)
+            coupled.decouple(kw["decoupling"], kw["braking"], kw["standstill"])
+            return SyncHandle(ax.active_command, lambda: coupled.state is CamState.DECOUPLED)
         # sync_out: leave the master; the axis halts with its ramp
         return ax.end_sync(kw.get("deceleration"))
 
@@ -428,14 +431,14 @@ class Machine:
         direction = kw.get("direction", -1)
         return SwitchHoming(
             lambda: sensor.state,
-            velocity=kw.get("velocity", cfg.jog_velocity),
+            velocity=cast(float, kw.get("velocity", cfg.jog_velocity)),
             direction=-1 if direction in (-1, "negative") else 1,
             position=position,
             acceleration=kw.get("acceleration"),
             max_distance=kw.get("max_distance"),
         )
 
-    def submit(self, axis: str, command: str, **kwargs: Any):
+    def submit(self, axis: str | None, command: str, **kwargs: Any):
         """Give an axis command from outside (CLI, fieldbus, HMI): applied at the next cycle boundary."""
         return self.commands.submit(self._issue, axis, command, kwargs)
 
@@ -578,13 +581,22 @@ def _getter(obj: Any, name: str) -> Callable[[], Any]:
 _STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...
 
 
+def _state_code(axis: Axis) -> int:
+    return _STATE_CODE[axis.state]
+
+
+def _sensor_level(sensor: Sensor) -> bool:
+    return bool(sensor.state)
+
+
 _SYNC_COMMANDS = ("gear_in", "gear_in_pos", "cam_in", "cam_out", "sync_out", "set_master_velocity")
 
 
 class _Failed:
     """Handle of a command refused before it reached an axis (for example an infeasible gear-in-position)."""
 
-    done = aborted = False
+    done = False
+    aborted = False
     error = True
     error_id = -1
 
