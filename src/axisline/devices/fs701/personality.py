@@ -83,9 +83,7 @@ import math
 from dataclasses import fields
 from functools import partial
 from pathlib import Path
-from typing import Annotated, Any, Callable
-
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
+from typing import Any, Callable
 
 from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
@@ -103,6 +101,7 @@ from .io_assign import (
     input_function,
     output_signal,
 )
+from .config import DEFAULT_INPUTS, Fs701Config, ShearConfig
 from .line import BatchJob, CommissioningReport, CutMeasurement, CutMeter, Shear, batch_statistics
 from .loop import cycle_test, direction_check, tune_gain, tune_offset
 from .parameters import ParameterError, ParameterSet, parameter
@@ -111,11 +110,6 @@ from .registers import RegisterMap, modbus_read, modbus_write, ModbusError
 from .status import COUNTER_MIRRORS, ERRORS, PROCESS_BASE, ClearReason, StatusImage
 
 __all__ = ["Fs701Config", "ShearConfig", "Fs701Personality", "DEFAULT_INPUTS"]
-
-Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
-
-DEFAULT_INPUTS: dict[str, bool | str] = {"control_enable": "job", "start_stop": "job", "cut_completed": "shear"}
-"""The demo wiring: the batch job switches Control Enable and Start/Stop, the shear answers."""
 
 #: parameters that scale the encoders: applied at the next Control Enable OFF (D3)
 DEFERRED = ("pulses_line_1000", "pulses_cut_1000", "dir_counter_1", "dir_counter_2", "sampling_time")
@@ -128,68 +122,6 @@ _BIT_ADJUST = 1 << 30  # Adjust Program (serial / bus only)
 _BIT_TEST = 1 << 31  # Test Program (serial / bus only)
 ADJUST_STEPS = (("direction", direction_check), ("offset", tune_offset), ("gain", tune_gain))
 TEST_PROGRAM_CYCLES = 2  # up/down cycles the Test program runs per start (#31 Test Counter)
-
-
-class ShearConfig(BaseModel):
-    """The simulated cutting tool on the carriage (line.py: Shear)."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    blade_delay: float = Field(0.02, ge=0.0, le=10.0, description="s from Ready to Cut until the blade passes the material (the cut instant)")
-    cut_time: float = Field(0.06, gt=0.0, le=60.0, description="s from Ready to Cut until the tool signals Cut completed")
-    pulse: float = Field(0.02, gt=0.0, le=10.0, description="s the Cut completed signal lasts")
-
-
-class Fs701Config(BaseModel):
-    """The [device] table of personality "fs701"."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    carriage: str = Field(
-        min_length=1, max_length=64,
-        description="the carriage axis: a servo drive with command = 'analog' (Ana-Out 2) and an [axis.encoder] (Encoder 2)",
-    )
-    line: str = Field(
-        "virtual", min_length=1, max_length=64,
-        description="the line encoder (Encoder 1): a [[master]] of kind 'wheel' or 'axis_encoder', or 'virtual' (only the FS701's virtual master)",
-    )
-    printmark_sensor: str | None = Field(
-        None, min_length=1, max_length=64, description="the print-mark sensor (a [[marks]] name) on In15, for Cutting Mode 2/3"
-    )
-    parameter_file: str | None = Field(
-        None, min_length=1, max_length=4096, description="FS701 parameter set file (TOML, paramfile.py), relative to the machine file"
-    )
-    parameters: dict[str, int | float] = Field(
-        default_factory=dict, description="parameter values by snake_case name in engineering units (after the file), e.g. cutting_length = 1000"
-    )
-    save_parameters: str | None = Field(
-        None, min_length=1, max_length=4096,
-        description="persist() and 'Store to EEProm' write the parameter set here (relative to the machine file); none: never written",
-    )
-    inputs: dict[str, bool | Signal] = Field(
-        default_factory=lambda: dict(DEFAULT_INPUTS),
-        description="input functions (control_enable, start_stop, cut_completed, ...) or terminals In1..In16: true/false, "
-        "'job' (the batch job), 'shear' (the tool's Cut completed), a sensor or an [io] input; replaces the default wiring",
-    )
-    outputs: dict[str, Signal] = Field(
-        default_factory=dict, description="output signals (ready_to_cut, home, error, ...) or terminals Out1..Out8 to [io] outputs"
-    )
-    commissioning: bool = Field(True, description="run the Adjust program (direction check, Ana-Out Offset 2 and Gain 2) before the first cycle")
-    batch: int = Field(0, ge=0, le=10_000_000, description="pieces to cut (Batch Counter cuts) before the job stops the cutter; 0: no end")
-    start_delay: float = Field(0.02, gt=0.0, le=60.0, description="s from Control Enable to Start in the batch job")
-    shear: ShearConfig = Field(default_factory=ShearConfig, description="the simulated cutting tool")
-    tolerance: float = Field(1.0, gt=0.0, le=1e6, description="length tolerance, carriage increments, for pieces cut at constant line speed")
-    ramp_tolerance: float = Field(2.0, gt=0.0, le=1e6, description="length tolerance, carriage increments, for pieces with a cut during a speed change")
-    mark_tolerance: float = Field(2.0, gt=0.0, le=1e6, description="print-mark cuts: largest offset to the mark, carriage increments")
-    tolerance_fault: bool = Field(True, description="a piece out of tolerance is a run fault (exit 1)")
-
-    @field_validator("parameters")
-    @classmethod
-    def _known_parameters(cls, v: dict[str, Any]) -> dict[str, Any]:
-        bad = [k for k in v if k not in ParameterSet()]
-        if bad:
-            raise ValueError(f"unknown FS701 parameter(s) {', '.join(map(repr, bad))} (snake_case names of the manual's §11, e.g. cutting_length)")
-        return v
 
 
 class _DrivecomPort:
@@ -694,10 +626,12 @@ class Fs701Personality(Personality):
 
     def _feed_marks(self, c: Cutter) -> None:
         """Print-mark edges of the cycle just simulated, in order, to the cutter (In15)."""
-        edges = self.mark_sensor.edges
+        sensor = self.mark_sensor
+        assert sensor is not None  # (called only with a print-mark sensor)
+        edges = sensor.edges
         if not edges or edges[-1] is self._last_edge:
             return
-        new = []
+        new: list[Any] = []
         for e in reversed(edges):
             if e is self._last_edge:
                 break
@@ -744,7 +678,9 @@ class Fs701Personality(Personality):
 
     def _mark_offset(self, point: float) -> float | None:
         """M4: cut point - the nearest mark's active edge on the material."""
-        marks = self.mark_sensor.device.marks
+        sensor = self.mark_sensor
+        assert sensor is not None  # (print-mark mode only)
+        marks = sensor.device.marks
         edge = marks.width if self.settings.printmark_edge == 1 else 0.0
         best = None
         for k in marks.indices_near(point - edge - marks.width - 1.0, point - edge + marks.width + 1.0):
@@ -824,7 +760,7 @@ class Fs701Personality(Personality):
         """D5: process values, output word and error word from the cutter (at a cycle boundary)."""
         c = self.cutter
         st = self.registers.status
-        values = {}
+        values: dict[str | int, int] = {}
         lo, hi = _INT32
         for n, v in c.process_values().items():
             code = PROCESS_BASE + n
@@ -867,7 +803,7 @@ class Fs701Personality(Personality):
     # ------------------------------------------------------------------ the run's end, the report
 
     @property
-    def finished(self) -> bool | None:
+    def finished(self) -> bool | None:  # type: ignore[override]  # (Personality: a plain attribute)
         """The batch job: None without one (or with batch = 0), else whether it is done."""
         if self.job is None or self.config.batch == 0:
             return None

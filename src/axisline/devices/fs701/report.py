@@ -358,7 +358,7 @@ def config_table_markdown(model: Any = None) -> str:
     from axisline.configerrors import allowed_range
     from pydantic_core import PydanticUndefined
 
-    from .personality import Fs701Config
+    from .config import Fs701Config
 
     model = Fs701Config if model is None else model
     kinds = {
