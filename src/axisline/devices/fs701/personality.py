@@ -85,6 +85,8 @@ from functools import partial
 from pathlib import Path
 from typing import Any, Callable
 
+from mypy_extensions import mypyc_attr
+
 from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
 
@@ -129,7 +131,7 @@ class _DrivecomPort:
 
     def __init__(self, device: "Fs701Personality") -> None:
         self.device = device
-        self.endpoint = DrivecomEndpoint(device.registers, address=None, writes_allowed=lambda: device.network_writes)
+        self.endpoint = DrivecomEndpoint(device.registers, address=None, writes_allowed=partial(getattr, device, "network_writes"))
 
     def feed(self, data: bytes) -> bytes:
         self.device.refresh_status()
@@ -168,6 +170,8 @@ class _ModbusPort:
             raise RegisterRefused(str(e)) from None
 
 
+# a Python class also when compiled: it subclasses Personality, which stays interpreted
+@mypyc_attr(native_class=False)
 class Fs701Personality(Personality):
     """The FS701 on a simulated cut-to-length line (see the module docstring)."""
 
@@ -291,25 +295,20 @@ class Fs701Personality(Personality):
         entry = self._line_entry
         if entry is not None and entry.kind == "axis_encoder":
             feed = machine.units[entry.axis]  # the roll that pulls the strip: its surface travel
-
-            def probe() -> tuple[float, float, float]:
-                return feed.drive.position, feed.drive.velocity, feed.axis.command_acceleration
+            probe: Callable[[], tuple[float, float, float]] = partial(_feed_probe, feed)
             self.measured_on = f"feed axis {entry.axis!r} (plant)"
         elif material is not None and entry is not None:
-            def probe() -> tuple[float, float, float]:
-                return material.position, material.velocity, material.acceleration
+            probe = partial(_material_probe, material)
             self.measured_on = "material"
         else:
-            def probe() -> tuple[float, float, float]:
-                m = self.cutter.master
-                return m.position, m.velocity, 0.0
+            probe = self._virtual_probe
             self.measured_on = "virtual master"
-        drive = unit.drive
+        # (no closures in this class: partials and bound methods, see _feed_probe)
         self.meter = CutMeter(
             probe,
-            lambda: drive.position,
-            counts_per_lu=lambda: self.settings.cut_counts_per_lu,
-            tool_width=lambda: float(self.settings.tool_width),
+            partial(getattr, unit.drive, "position"),
+            counts_per_lu=self._cut_counts_per_lu,
+            tool_width=self._tool_width,
             tolerance=config.tolerance,
             ramp_tolerance=config.ramp_tolerance,
             mark_tolerance=config.mark_tolerance,
@@ -389,10 +388,9 @@ class Fs701Personality(Personality):
             return partial(getattr, self.shear, "level"), False, None
         sensor = self.machine.sensors.get(value)
         if sensor is not None:
-            return (lambda: sensor.state), False, None
+            return partial(getattr, sensor, "state"), False, None
         if value in mc.io.inputs:
-            machine = self.machine
-            return (lambda: machine.io.read(value)), False, None
+            return partial(self.machine.io.read, value), False, None
         known = sorted(set(self.machine.sensors) | set(mc.io.inputs))
         return None, False, (
             f"device.inputs.{key} = {value!r}: no such sensor or io input (known: {', '.join(known) or 'none'}; "
@@ -442,7 +440,7 @@ class Fs701Personality(Personality):
                     self._dynamic.append((1 << (t - 1), getter))
         if self.config.printmark_sensor is not None and self.config.printmark_sensor in self.machine.sensors:
             sensor = self.machine.sensors[self.config.printmark_sensor]
-            self._dynamic.append((1 << (PRINT_MARK_INPUT - 1), lambda: sensor.state))
+            self._dynamic.append((1 << (PRINT_MARK_INPUT - 1), partial(getattr, sensor, "state")))
         return problems
 
     def _wire_outputs(self, io: IOAssignment, mc: Any) -> list[str]:
@@ -500,11 +498,7 @@ class Fs701Personality(Personality):
         drive = self.unit.drive
         start = drive.position
         enc = self._car_encoder
-        sign = 1 if s.dir_counter_2 == 1 else -1
-
-        def counts() -> int:
-            return sign * enc.sample()
-
+        counts = partial(_signed_sample, 1 if s.dir_counter_2 == 1 else -1, enc)
         out: list[dict[str, Any]] = []
         ok = True
         for name, fn in steps:
@@ -624,6 +618,16 @@ class Fs701Personality(Personality):
             and not (c.cut_state not in (CutState.HOME, CutState.IDLE) or self.shear.busy)
         )
 
+    def _virtual_probe(self) -> tuple[float, float, float]:
+        m = self.cutter.master
+        return m.position, m.velocity, 0.0
+
+    def _cut_counts_per_lu(self) -> float:
+        return self.settings.cut_counts_per_lu
+
+    def _tool_width(self) -> float:
+        return float(self.settings.tool_width)
+
     def _feed_marks(self, c: Cutter) -> None:
         """Print-mark edges of the cycle just simulated, in order, to the cutter (In15)."""
         sensor = self.mark_sensor
@@ -638,7 +642,8 @@ class Fs701Personality(Personality):
             new.append(e)
         self._last_edge = edges[-1]
         inv = self._pm_inverted
-        for e in reversed(new):
+        new.reverse()  # (oldest first; `for e in reversed(new)` trips mypyc)
+        for e in new:
             c.print_mark_edge(e._replace(rising=not e.rising) if inv else e)
 
     def _on_ready(self, info: CutInfo) -> None:
@@ -812,12 +817,12 @@ class Fs701Personality(Personality):
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
         lu = self.unit.config.unit
         return {
-            "fs701.line_speed": (lambda: self.cutter.line_speed, f"{lu}/min", float),
-            "fs701.position_error": (lambda: self.cutter.position_error, "incr", float),
-            "fs701.ana_out_2": (lambda: self.unit.command_volts, "V", float),
-            "fs701.cut_state": (lambda: int(self.cutter.cut_state), "", int),
-            "fs701.ready_to_cut": (lambda: self.cutter.outputs.ready_to_cut, "", bool),
-            "fs701.cut_completed": (lambda: self.cutter.inputs.cut_completed, "", bool),
+            "fs701.line_speed": (partial(_cutter_value, self, "line_speed"), f"{lu}/min", float),
+            "fs701.position_error": (partial(_cutter_value, self, "position_error"), "incr", float),
+            "fs701.ana_out_2": (partial(getattr, self.unit, "command_volts"), "V", float),
+            "fs701.cut_state": (partial(_cutter_value, self, "cut_state"), "", int),
+            "fs701.ready_to_cut": (partial(_cutter_output, self, "ready_to_cut"), "", bool),
+            "fs701.cut_completed": (partial(_cutter_input, self, "cut_completed"), "", bool),
         }
 
     @property
@@ -874,6 +879,36 @@ class Fs701Personality(Personality):
         from .report import report_section
 
         return report_section(device_summary, plots)
+
+
+# Readings for the meter, the Adjust routines and the scope: module functions behind partials,
+# not closures (mypyc cannot compile closures in methods of a class that stays a Python class).
+
+
+def _feed_probe(feed: Any) -> tuple[float, float, float]:
+    return feed.drive.position, feed.drive.velocity, feed.axis.command_acceleration
+
+
+def _material_probe(material: Any) -> tuple[float, float, float]:
+    return material.position, material.velocity, material.acceleration
+
+
+def _signed_sample(sign: int, encoder: Any) -> int:
+    return sign * encoder.sample()
+
+
+def _cutter_value(device: Any, name: str) -> Any:
+    # the personality's cutter of now (a parameter change may rebuild it), not the first one
+    value = getattr(device.cutter, name)
+    return int(value) if name == "cut_state" else value
+
+
+def _cutter_output(device: Any, name: str) -> bool:
+    return bool(getattr(device.cutter.outputs, name))
+
+
+def _cutter_input(device: Any, name: str) -> bool:
+    return bool(getattr(device.cutter.inputs, name))
 
 
 def _headline(d: dict[str, Any]) -> str:
