@@ -36,6 +36,27 @@ def test_feed_forward_scaling_l1():
     assert PositionLoop(s2, 0.001, dac=False).update(0.0, 2000.0, 0.0) == pytest.approx(1.51, abs=0.005)
 
 
+def test_a_setting_written_while_running_takes_effect_at_the_next_update():
+    """Parameters written over the interface change the running loop: its constants (gain
+    volts, Kv, offset, Max. Correction) follow every write of the settings."""
+    s = settings(ana_out_gain_2=8.0, p_gain=1000)
+    loop = PositionLoop(s, 0.001, dac=False)
+    assert loop.update(0.0, 10000.0, 0.0) == pytest.approx(8.0)
+    s.ana_out_gain_2 = 9.0
+    assert s.v_max_line == pytest.approx(10000.0)
+    assert loop.update(0.0, 10000.0, 0.0) == pytest.approx(9.0)
+    s.max_line_speed = 1200000  # 20000 LU/s: the same speed is now half of the scale
+    assert s.v_max_line == pytest.approx(20000.0)
+    assert loop.update(0.0, 10000.0, 0.0) == pytest.approx(4.5)
+    before = loop.update(1.0, 0.0, 0.0)
+    s.p_gain = 2000
+    assert loop.update(1.0, 0.0, 0.0) == pytest.approx(2.0 * before)
+    s.pulses_cut_1000 = 4000
+    assert s.cut_counts_per_lu == 4.0 and not s.ratio_error
+    loop.update(1.0, 0.0, 0.0)
+    assert loop.position_error == pytest.approx(4.0)  # 1 LU = 4 increments now
+
+
 def test_p_gain_scaling_l2():
     """P-Gain/100 = Kv (1/s) with a matched gain: 1 LU of error asks for P/100 LU/s more."""
     s = settings(p_gain=2500)

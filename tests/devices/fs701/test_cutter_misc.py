@@ -285,6 +285,32 @@ def test_virtual_master_runs_the_cut_cycle_without_material():
     assert c.line_speed == 0.0
 
 
+@pytest.mark.parametrize("standstill", [0.0, 0.3, 1.7])
+def test_the_virtual_master_ramps_from_the_cycle_it_is_started_after_any_standstill(standstill):
+    """A stopped virtual master is not re-sampled every cycle; started again, its ramp begins
+    at that cycle: the travel after Run Virt. Master does not depend on how long it stood."""
+    s = mm(virtual_line_speed=60000, ramp_vir_master=1)
+    rig = CutterRig(s, line_speed=0.0)
+    c = rig.cutter
+    c.inputs.select_vir_master = True
+    rig.run(0.05 + standstill)
+    assert c.master.velocity == 0.0
+    start = c.master.position
+    c.inputs.run_virt_master = True
+    rig.run(0.5)
+    v = s.virtual_speed_effective() / 60.0
+    a = s.v_max_line / s.ramp_vir_master
+    expected = 0.5 * a * 0.5**2 if a * 0.5 < v else v * 0.5 - v * v / (2 * a)
+    assert c.master.position - start == pytest.approx(expected, abs=2.0 / s.line_counts_per_lu)
+    c.inputs.run_virt_master = False  # and stopped, then started again
+    rig.run(1.5)
+    assert c.master.velocity == 0.0
+    again = c.master.position
+    c.inputs.run_virt_master = True
+    rig.run(0.5)
+    assert c.master.position - again == pytest.approx(expected, abs=2.0 / s.line_counts_per_lu)
+
+
 def test_select_virtual_master_switch_keeps_the_length_counter():
     s = mm(virtual_line_speed=30000, ramp_vir_master=0)
     rig = CutterRig(s, line_speed=500.0)
