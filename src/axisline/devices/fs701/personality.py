@@ -82,6 +82,7 @@ from __future__ import annotations
 import math
 from dataclasses import fields
 from functools import partial
+from operator import attrgetter
 from pathlib import Path
 from typing import Any, Callable
 
@@ -817,12 +818,13 @@ class Fs701Personality(Personality):
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
         lu = self.unit.config.unit
         return {
-            "fs701.line_speed": (partial(_cutter_value, self, "line_speed"), f"{lu}/min", float),
-            "fs701.position_error": (partial(_cutter_value, self, "position_error"), "incr", float),
+            # the cutter of now (a parameter change may rebuild it): dotted paths, read in C
+            "fs701.line_speed": (partial(attrgetter("cutter.line_speed"), self), f"{lu}/min", float),
+            "fs701.position_error": (partial(attrgetter("cutter.position_error"), self), "incr", float),
             "fs701.ana_out_2": (partial(getattr, self.unit, "command_volts"), "V", float),
-            "fs701.cut_state": (partial(_cutter_value, self, "cut_state"), "", int),
-            "fs701.ready_to_cut": (partial(_cutter_output, self, "ready_to_cut"), "", bool),
-            "fs701.cut_completed": (partial(_cutter_input, self, "cut_completed"), "", bool),
+            "fs701.cut_state": (partial(attrgetter("cutter.cut_state"), self), "", int),
+            "fs701.ready_to_cut": (partial(attrgetter("cutter.outputs.ready_to_cut"), self), "", bool),
+            "fs701.cut_completed": (partial(attrgetter("cutter.inputs.cut_completed"), self), "", bool),
         }
 
     @property
@@ -895,20 +897,6 @@ def _material_probe(material: Any) -> tuple[float, float, float]:
 
 def _signed_sample(sign: int, encoder: Any) -> int:
     return sign * encoder.sample()
-
-
-def _cutter_value(device: Any, name: str) -> Any:
-    # the personality's cutter of now (a parameter change may rebuild it), not the first one
-    value = getattr(device.cutter, name)
-    return int(value) if name == "cut_state" else value
-
-
-def _cutter_output(device: Any, name: str) -> bool:
-    return bool(getattr(device.cutter.outputs, name))
-
-
-def _cutter_input(device: Any, name: str) -> bool:
-    return bool(getattr(device.cutter.inputs, name))
 
 
 def _headline(d: dict[str, Any]) -> str:
