@@ -237,7 +237,6 @@ class EncoderMaster(Master):
         self._modulus = 1 << counter_bits if counter_bits is not None else 0
         delta = getattr(encoder, "delta", None)
         self._delta = delta if callable(delta) else self._plain_delta
-        self._plain = not callable(delta)  # _update inlines _plain_delta
 
         if velocity_filter == "window":
             st = self.period if sampling_time is None else _positive("sampling_time", sampling_time)
@@ -277,21 +276,8 @@ class EncoderMaster(Master):
         return d
 
     def _update(self, cycle: int) -> None:
-        raw = self.encoder.counts
-        if type(raw) is not int:  # (_read_raw's check; the plain int needs none)
-            if isinstance(raw, bool) or not hasattr(raw, "__index__"):
-                raise TypeError(f"encoder.counts must be an integer, got {raw!r}")
-            raw = int(raw)
-        if self._plain:
-            d = raw - self._raw
-            m = self._modulus
-            if m:
-                d %= m
-                if d >= m // 2:
-                    d -= m
-        else:
-            d = self._delta(raw, self._raw)
-        d *= self.multiplier
+        raw = self._read_raw()
+        d = self._delta(raw, self._raw) * self.multiplier
         self._raw = raw
         counts = self._counts + d
         self._counts = counts

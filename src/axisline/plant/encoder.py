@@ -116,13 +116,8 @@ class IncrementalEncoder:
             if first <= last:  # (else no index position within the cycle's travel: no pulse)
                 self._watch_index(previous, first, last)
         self._previous = position
-        # counts_at and _wrap, inline (per cycle)
-        counts = math.floor(self.direction * position * self.lines_per_unit * self.multiplier + _EDGE_TOLERANCE)
-        self.counts_unwrapped = counts
-        modulus = self._modulus
-        if modulus:
-            counts %= modulus
-        self.counts = counts
+        self.counts_unwrapped = counts = self.counts_at(position)
+        self.counts = counts = self._wrap(counts)
         return counts
 
     def _watch_index(self, previous: float, first: int, last: int) -> None:

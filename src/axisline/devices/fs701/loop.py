@@ -219,7 +219,7 @@ class PositionLoop:
         elif u < -DAC_LIMIT_VOLTS:
             u = -DAC_LIMIT_VOLTS
         if self.dac:
-            u = round(u / _DAC_STEP) * _DAC_STEP  # quantise(u)
+            u = self.quantise(u)
         self.output = u
         return u
 

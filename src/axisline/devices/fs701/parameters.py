@@ -696,6 +696,11 @@ class ParameterSet:
         return new
 
     # ---- access -----------------------------------------------------------------------------
+    @property
+    def version(self) -> int:
+        """Counts the writes: a cheap "has anything been written since?" test."""
+        return self._version
+
     def get(self, key: "str | int | Parameter") -> int | float:
         p = parameter(key)
         return p.from_raw(self._raw[p.code])

@@ -554,9 +554,9 @@ class Fs701Personality(Personality):
         params = self.params
         # parameter writes since the last cycle: the set's write counter first, the (full)
         # comparison only when something was written
-        if params._version != self._params_seen or params is not self._params_obj:
+        if params.version != self._params_seen or params is not self._params_obj:
             self._params_obj = params
-            self._params_seen = params._version
+            self._params_seen = params.version
             if params != self._synced:
                 self._apply_parameters()
         if self._pending_rebuild and not c.inputs.control_enable:
@@ -571,14 +571,10 @@ class Fs701Personality(Personality):
             self._hw_levels = levels
             self._hw_word = self.registers.io.hardware_command_word(levels)
         reg = self.registers
-        st = reg.status
         hw = self._hw_word
-        word = hw | st._serial | st.can_commands
-        # the register service reacts to edges of All Commands only: none when neither the
-        # hardware word nor All Commands changed since its last call
-        if st.hardware_commands != hw or word != reg._edges._last:
+        if reg.needs_service(hw):
             reg.set_hardware_commands(hw)
-            word = st.all_commands
+        word = reg.status.all_commands
         if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
             self._service_programs(cycle, word)
         # the cutter's inputs from All Commands: one precomputed field table per word seen
