@@ -518,10 +518,5 @@ class EdgeDetector:
         last, self._last = self._last, word
         return Edges(word & ~last, last & ~word, word)
 
-    @property
-    def last(self) -> int:
-        """The word of the last update (or reset)."""
-        return self._last
-
     def reset(self, word: int = 0) -> None:
         self._last = word

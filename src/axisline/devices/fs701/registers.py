@@ -478,15 +478,6 @@ class RegisterMap:
         self.status.hardware_commands = word
         return self.service()
 
-    def needs_service(self, hardware_word: int) -> bool:
-        """Whether set_hardware_commands(hardware_word) would change anything: the hardware word
-        differs from 0x0B00, or All Commands differs from what the last service saw (no edge,
-        no reaction otherwise). Lets a device skip the call in the cycles where nothing changed."""
-        st = self.status
-        return st.hardware_commands != hardware_word or (
-            hardware_word | st.serial_commands | st.can_commands
-        ) != self._edges.last
-
     def set_can_commands(self, word: int) -> Edges:
         if isinstance(word, bool) or not isinstance(word, int) or not 0 <= word <= 0xFFFF_FFFF:
             raise RegisterRangeError(0x0B02, f"CAN Commands {word!r} is not a 32-bit word")
