@@ -253,6 +253,15 @@ def test_overshooting_start_reverses_and_matches_ruckig():
     assert prof.duration == pytest.approx(ruckig_duration(start, target, lim), rel=1e-6)
 
 
+def test_a_start_one_ulp_below_the_velocity_limit_finds_the_loop_back():
+    """Found by hypothesis: at p = 0 one ulp below v_max, reaching p = 0 at v_max needs a loop
+    backwards whose peak is exactly v_max: the root sits on the end of the search interval,
+    within rounding of zero but with no sign change to bracket it."""
+    start, target, lim = State(0.0, 0.49999999999999994, 0.0), State(0.0, 0.5), Limits(v=0.5, a=0.05, d=0.05, j=8.0)
+    _same_duration_as_ruckig((start, target, lim))
+    assert plan("jerk", start, target, lim).duration > 40.0
+
+
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(requests(moving=True, target_velocity=True), st.sampled_from(["trapezoid", "jerk", "sin2"]), st.floats(0.3, 3.0))
 def test_every_shape_reaches_the_target_within_limits(req, shape, d_ratio):

@@ -415,13 +415,16 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
         xs = [lo + (hi - lo) * i / n for i in range(n)] + [hi] if n else [lo]
         prev_x: float | None = None
         prev_f: float | None = None
+        # a root on a grid point within rounding (e.g. exactly at t2max when the start is one
+        # ulp below v_max) has no sign change to bracket it: taken as found (`add` checks it)
+        zero = 1e-12 * max(1.0, abs(dist), abs(v0), abs(vf))
         for i, x in enumerate(xs):
             at_edge = edge and i == 0
             fx = f(x, at_edge)
             if fx is None:
                 prev_x = prev_f = None
                 continue
-            if fx == 0.0:
+            if abs(fx) <= zero:
                 make(x, at_edge)
             elif prev_f is not None and prev_x is not None and (fx > 0.0) != (prev_f > 0.0):
                 make(_illinois(lambda y: f(y, False), prev_x, x, prev_f, fx), False)
