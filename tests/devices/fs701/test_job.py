@@ -99,8 +99,13 @@ def test_a_slipping_wheel_shows_in_the_pieces_not_in_the_counters():
     pieces = [c for c in m.device.cuts if c.actual_length is not None]
     assert len(pieces) == 3
     for p in pieces:  # 1000 mm of wheel travel = 1002.004 mm of strip
-        assert p.actual_length == pytest.approx(1000.0 / 0.998, abs=0.1)
+        # the carriage's own travel is not slipped: a cut made further from home (at a higher
+        # line speed: longer anticipation) lands 0.2 % of that extra travel further on.
+        # The first piece starts at 44 m/min and ends at 60: ~50 mm more travel, ~0.1 mm
+        assert p.actual_length == pytest.approx(1000.0 / 0.998, abs=0.15)
         assert not p.in_tolerance
+    for p in pieces[1:]:  # both cuts at 60 m/min: the slip alone
+        assert p.actual_length == pytest.approx(1000.0 / 0.998, abs=0.02)
     assert not result.completed
     assert any("beyond the tolerance" in f for f in result.faults)
 

@@ -71,6 +71,7 @@ def test_the_example_builds_the_fs701_on_its_line():
     assert unit.controller is not None and unit.controller_volts
     # commissioning found the drive's gain and offset errors (gain_factor 1.046, +21 mV)
     assert dev.commissioning.ok and [s["step"] for s in dev.commissioning.steps] == ["direction", "offset", "gain"]
+    assert dev.settings.acc_feed_forward == 0.0  # the FS701's own loop (loop.py L10)
     assert dev.settings.ana_out_gain_2 == pytest.approx(10.0 / 1.046, abs=0.03)
     assert dev.params.ana_out_gain_2 == dev.settings.ana_out_gain_2
     assert dev.settings.ana_out_offset_2 < 0
@@ -314,11 +315,13 @@ def test_virtual_master_line_measures_on_the_master():
 
 
 def test_the_device_table_is_documented():
+    from axisline.devices.fs701.config import AdjustConfig
     from axisline.devices.fs701.personality import ShearConfig
     from axisline.devices.fs701.report import config_table_markdown
 
     doc = (Path(__file__).resolve().parents[3] / "docs" / "fs701.md").read_text()
     assert config_table_markdown() in doc and config_table_markdown(ShearConfig) in doc
+    assert config_table_markdown(AdjustConfig) in doc
 
 
 def test_a_feed_roll_encoder_as_the_line():

@@ -7,13 +7,14 @@ module that mypyc compiles (compiled_modules.txt) cannot define pydantic models.
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
 
+from .loop import LEAD_MAX_MS
 from .parameters import ParameterSet
 
-__all__ = ["DEFAULT_INPUTS", "Fs701Config", "ShearConfig", "Signal"]
+__all__ = ["AdjustConfig", "DEFAULT_INPUTS", "Fs701Config", "ShearConfig", "Signal"]
 
 Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
 
@@ -29,6 +30,19 @@ class ShearConfig(BaseModel):
     blade_delay: float = Field(0.02, ge=0.0, le=10.0, description="s from Ready to Cut until the blade passes the material (the cut instant)")
     cut_time: float = Field(0.06, gt=0.0, le=60.0, description="s from Ready to Cut until the tool signals Cut completed")
     pulse: float = Field(0.02, gt=0.0, le=10.0, description="s the Cut completed signal lasts")
+
+
+class AdjustConfig(BaseModel):
+    """The Adjust program's own settings (the PC software's "Adjust Carriage" card, §7.1)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    speed: int | None = Field(
+        None, ge=1, le=9_999_999,
+        description="LU/min, the card's Vir. Master Speed; none: 10 % of Max. Line Speed (the manual's default). "
+        "Ana-Out Gain 2 is tuned at this speed: near the line's working speed it is right where the cuts are made",
+    )
+    ramp_time: float = Field(1.0, ge=0.0, le=99.0, description="s from 0 to Max. Line Speed in the Adjust runs (0: at once)")
 
 
 class Fs701Config(BaseModel):
@@ -66,6 +80,13 @@ class Fs701Config(BaseModel):
         default_factory=dict, description="output signals (ready_to_cut, home, error, ...) or terminals Out1..Out8 to [io] outputs"
     )
     commissioning: bool = Field(True, description="run the Adjust program (direction check, Ana-Out Offset 2 and Gain 2) before the first cycle")
+    adjust: AdjustConfig = Field(default_factory=AdjustConfig, description="the Adjust program's speed and ramp")
+    acceleration_feed_forward: float | Literal["auto"] = Field(
+        0.0,
+        description="ms: the set point's acceleration x this lead is added to the feed-forward (axisline, not an FS701 "
+        "register; loop.py L10). 0: the FS701's loop (feed-forward + P + I). 'auto': the Adjust program measures it "
+        "(commissioning = true, or the serial Adjust Program); 0 until it has run",
+    )
     batch: int = Field(0, ge=0, le=10_000_000, description="pieces to cut (Batch Counter cuts) before the job stops the cutter; 0: no end")
     start_delay: float = Field(0.02, gt=0.0, le=60.0, description="s from Control Enable to Start in the batch job")
     shear: ShearConfig = Field(default_factory=ShearConfig, description="the simulated cutting tool")
@@ -73,6 +94,13 @@ class Fs701Config(BaseModel):
     ramp_tolerance: float = Field(2.0, gt=0.0, le=1e6, description="length tolerance, carriage increments, for pieces with a cut during a speed change")
     mark_tolerance: float = Field(2.0, gt=0.0, le=1e6, description="print-mark cuts: largest offset to the mark, carriage increments")
     tolerance_fault: bool = Field(True, description="a piece out of tolerance is a run fault (exit 1)")
+
+    @field_validator("acceleration_feed_forward")
+    @classmethod
+    def _lead_range(cls, v: float | str) -> float | str:
+        if isinstance(v, (int, float)) and not 0.0 <= v <= LEAD_MAX_MS:
+            raise ValueError(f"acceleration_feed_forward = {v} ms: allowed 0 .. {LEAD_MAX_MS:g} ms, or 'auto'")
+        return v
 
     @field_validator("parameters")
     @classmethod

@@ -155,10 +155,18 @@ each has a test in tests/devices/fs701/test_cutter*.py):
  C25 Motion detection (§2.18): Master in motion = |Encoder 1 speed| > Zero Speed Master;
     Vir. M. in motion = |virtual master speed| > Zero Speed Vir. Ma. (the manual's "Zero Freq.
     Master" in the output text is the register 0x0161). Test: test_motion_detection_outputs.
- C26 Set-point acceleration: the master's acceleration (a difference of quantised counts) is
-    too noisy to feed into the set point; the approach reports d2s/dtau2 (m'/V)^2 and the
-    forward deceleration starts from a = 0. Nothing downstream uses the acceleration (the FS701
-    has no acceleration feed-forward). Test: test_cutter_line.py (no overshoot at Cut completed).
+ C26 Set-point acceleration: the line's acceleration is the second difference of the line
+    counts over ACC_WINDOW = 8 ms (LineMaster.acceleration; exact on a ramp, 8 ms late, its
+    count noise bounded by 2 increments / W²); the virtual master's is its profile's. The
+    window filter's own acceleration at the 1 ms Sampling Time is count noise (1 increment per
+    ms² = 10^6 increments/s²). While synchronous the set point's acceleration is R x that; in
+    the approach d²s/dtau² (m'/V)² + ds/dtau m''/V (the cam's curvature and its slope times the
+    line's acceleration); the forward deceleration starts from a = 0. Only the acceleration
+    feed-forward (loop.py L10, off by default) uses it; with it on, the set-point velocity
+    also gets the measured line speed's lag made up (Sampling Time / 2 x acceleration), which
+    the FS701 leaves in. Tests: test_feed_forward.py::test_the_line_acceleration_is_exact_on_a_ramp_and_one_window_late_c26,
+    test_the_measured_line_speed_is_made_up_for_only_with_the_feed_forward,
+    test_cutter_line.py (no overshoot at Cut completed).
 """
 
 from __future__ import annotations
@@ -196,6 +204,10 @@ S_RAMP_PEAK_FACTOR = 1.25
 _S_JERK_FRACTION = 0.2  # jerk phase / ramp time: peak/mean = 1/(1 - 0.2) = 1.25
 _BIG = 1e15  # a speed limit that never binds
 _V_EPS = 1e-9  # LU/s: below this the line stands
+# s: the window of the line-acceleration estimate (LineMaster.acceleration): its count noise
+# times a feed-forward lead of a few ms stays below the 1 ms speed measurement's own, and it
+# follows a change of the line's ramp within 2 windows
+ACC_WINDOW = 0.008
 RETURN_TARGET_FRACTION = 0.75
 """C4: the return is planned to end within this fraction of the time left to the next start."""
 RETURN_REPLAN_FRACTION = 0.9
@@ -290,6 +302,7 @@ class _DerivedSettings:
     v_max_line: float
     sync_ratio: float
     s_ramps: bool
+    line_speed_lag: float
 
 
 # a plain Python class also when this module is compiled: _derive writes its __dict__
@@ -376,6 +389,8 @@ class CutterSettings(_DerivedSettings):
     ana_out_offset_2: int = 0  # -2047..2047 = -100..100 % of full scale
     ana_out_gain_2: float = 10.00  # V full scale (the register shows 1000 = 10.00 V)
     dir_frequency: int = 1  # virtual master direction 1 forward
+    # axisline, not an FS701 register ([device] acceleration_feed_forward, loop.py L10)
+    acc_feed_forward: float = 0.0  # ms of velocity lead: 0 = the FS701's loop
 
     # ------------------------------------------------------------------ construction
 
@@ -429,6 +444,9 @@ class CutterSettings(_DerivedSettings):
         # R = 1 + Sync Rate/100: carriage speed / line speed while synchronous
         d["sync_ratio"] = 1.0 + self.sync_rate / 100.0
         d["s_ramps"] = self.ramp_form == 0
+        # s the measured line speed is late (Sampling Time / 2): made up with the acceleration
+        # feed-forward, which it would otherwise lack (loop.py L10); 0 without it, as the FS701
+        d["line_speed_lag"] = self.sampling_time / 2000.0 if self.acc_feed_forward > 0.0 else 0.0
         d["version"] += 1
 
     @staticmethod
@@ -643,6 +661,14 @@ class LineMaster:
         # stopped and standing still: its state cannot change until Run Virt. Master, so its
         # per-cycle update is skipped (run_virtual catches its cycle up before a new ramp)
         self._virtual_idle = False
+        # the line acceleration: the second difference of the counts over ACC_WINDOW (a
+        # ring of 2N + 1 counts); see the `acceleration` property
+        n_acc = max(1, int(round(ACC_WINDOW / self.period)))
+        self._acc_n = n_acc
+        self._acc_scale = 1.0 / (kl * (n_acc * self.period) ** 2)
+        self._acc_ring = [0] * (2 * n_acc + 1)
+        self._acc_head = 0
+        self._acc_fill = 0
 
     def _source(self) -> Any:
         return self.virtual if self.use_virtual else self.encoder_master
@@ -697,7 +723,28 @@ class LineMaster:
         self._counts += c - self._last_src
         self._last_src = c
         self._v = float(src.velocity)
-        self._a = float(src.acceleration)
+        counts = self._counts
+        ring = self._acc_ring
+        n = len(ring)
+        i = self._acc_head + 1
+        if i == n:
+            i = 0
+        self._acc_head = i
+        ring[i] = counts
+        if self.use_virtual:
+            self._a = float(src.acceleration)  # the virtual master's profile: exact
+        elif self._acc_fill < n - 1:
+            self._acc_fill += 1
+            self._a = 0.0
+        else:
+            na = self._acc_n
+            j = i - na
+            if j < 0:
+                j += n
+            k = i + 1  # the oldest entry, 2N cycles back
+            if k == n:
+                k = 0
+            self._a = (counts - 2 * ring[j] + ring[k]) * self._acc_scale
 
     @property
     def counts(self) -> int:
@@ -713,6 +760,10 @@ class LineMaster:
 
     @property
     def acceleration(self) -> float:
+        """LU/s²: the virtual master's own; of Encoder 1 the second difference of the counts
+        over ACC_WINDOW, (x(t) - 2 x(t - W) + x(t - 2W)) / W², exact on a ramp and W late.
+        The window filter's acceleration at a 1 ms Sampling Time is count noise (one
+        increment per ms² is 1000² increments/s²), too rough for a feed-forward."""
         return self._a
 
     @property
@@ -720,7 +771,11 @@ class LineMaster:
         return self._cycle
 
     def reset_counts(self) -> None:
+        old = self._counts
         self._counts = 0
+        ring = self._acc_ring
+        for k in range(len(ring)):  # the acceleration estimate does not see the jump
+            ring[k] -= old
 
 
 # ====================================================================== cut records
@@ -986,6 +1041,7 @@ class Cutter:
             ax.actual_position,
             reset=self.inputs.reset_diff_cou,
             sync_mode=self.inputs.sync_mode_enable and sync_phase,
+            set_acceleration=ax.command_acceleration,
         )
 
     # ------------------------------------------------------------------ per cycle
@@ -1476,15 +1532,19 @@ class Cutter:
             self._sync_setpoint(cycle)
             return
         V = self._ap_V
-        kl_mc = self.settings.pulses_line_1000
+        st = self.settings
+        kl_mc = st.pulses_line_1000
         tau = (x_mc - self._ap_start_mc) / (kl_mc * V)
         s, ds, dds, _ = self._ap_profile.sample(tau)
-        k = m.velocity / V
+        v_line = m.velocity
+        if st.line_speed_lag > 0.0 and not m.use_virtual:
+            v_line += st.line_speed_lag * m.acceleration
+        k = v_line / V
         self._p = self.home_position + s
         self._v = ds * k
-        # (the master's acceleration, a difference of quantised counts, is too noisy to add
-        # its ds/dtau * m''/V term: the set-point acceleration is informational only)
-        self._a = dds * k * k
+        # d²/dt² of s(x / V) with x the master's travel: the cam's curvature at the master's
+        # speed plus its slope times the master's acceleration (loop.py L10 feeds it forward)
+        self._a = dds * k * k + ds * m.acceleration / V
 
     def _sync_setpoint(self, cycle: int) -> None:
         s = self.settings
@@ -1492,8 +1552,10 @@ class Cutter:
         R = self._R
         kl_mc = s.pulses_line_1000
         p = self.home_position + self._s_sync + R * (m.counts * 1000 - self._ap_sync_mc) / kl_mc
-        v = R * m.velocity
         a = R * m.acceleration
+        v = R * m.velocity
+        if s.line_speed_lag > 0.0 and not m.use_virtual:
+            v += s.line_speed_lag * a  # the line speed of now, not Sampling Time / 2 ago (L10)
         st = self.cut_state
         # gap (C16): cycloidal extra displacement over Gap Time
         if st is CutState.GAP and self._gap_profile is not None:

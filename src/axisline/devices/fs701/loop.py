@@ -7,7 +7,9 @@
 The control law (manual §4.3.2, §4.3.7, §7; spec §2.4, §2.5):
 
     e     = (set point - actual) in carriage increments        "Position Error" #3 (+: lags)
-    FF    = set-point velocity / Max. Line Speed x Ana-Out Gain 2      "Feed Forw. Value" #4
+    FF    = (set-point velocity + lead x set-point acceleration) / Max. Line Speed x Ana-Out Gain 2
+                                                                        "Feed Forw. Value" #4
+            (lead: the acceleration feed-forward, L10, an axisline extension; 0 = the FS701)
     P     = clamp(FF of the speed P-Gain/100 [1/s] x e [LU], +-Max. Correction)  #5
     I     = I + P x T / I-Time (I-Time > 0), clamped to +-Max. Correction       #6
     u     = clamp(FF + P + I + Ana-Out Offset 2 / 2047 x Ana-Out Gain 2, +-10 V), 12-bit DAC
@@ -22,6 +24,7 @@ through `command_voltage`, always with the virtual master as reference):
     tune_gain(...)         §7.3: Ana-Out Gain 2 so that the differential counter stays at zero
     tune_offset(...)       Ana-Out Offset 2 so that the carriage stands without correction
     cycle_test(...)        §7.4 "Cycle": ramps up and down, reports the differential counter
+    tune_lead(...)         L10: the acceleration feed-forward's lead from the counter on ramps
 
 Decisions (spec [GAP]/[CONFLICT] points of the loop; tests in test_cutter_loop.py):
  L1 Feed-forward scaling (spec §2.5 [DERIVED]): 100 % feed-forward = Max. Line Speed ("used for
@@ -55,13 +58,33 @@ Decisions (spec [GAP]/[CONFLICT] points of the loop; tests in test_cutter_loop.p
     counter counts from 0 again. Test: test_reset_diff_counter_opens_the_loop_l7.
  L8 DAC: 12 bit over +-10 V (4.88 mV per step), after the clamp.
     Test: test_output_is_clamped_to_10_volts_and_quantised_l8.
- L9 Gain tuning (§7.3 [DERIVED]): with P only at the constant adjust speed the differential
-    counter settles at e = (v - K G v/v_max) / (K c): linear in the gain. Two runs give the
-    gain where e = 0 (secant), rounded to 0.01 V; a third run checks |e| <= 8 (E16). Offset
+ L9 Gain tuning (§7.3 [DERIVED]): with P only at the constant adjust speed the mean
+    differential counter settles where K (G v/v_max + kp e) = v (kp = Kv G / (kC v_max)), so the
+    gain that zeroes it is G (1 + Kv e / (kC v)) whatever the drive's K: Newton steps until the
+    gain moves by less than 0.002 V, rounded to 0.01 V; a last run checks |e| <= 8 (E16). The
+    counter is taken relative to its value standing still: an offset the Ana-Out Offset left
+    (its step is 0.05 % of full scale) would otherwise go into the gain, 0.2 % at a 10 % adjust
+    speed, 1.5 increments of lag at 66 m/min in the example. The adjust speed (the Adjust
+    card's Vir. Master Speed) is [device.adjust] speed, default 10 % of Max. Line Speed (E15);
+    near the working speed the DAC's 4.9 mV step is a smaller fraction of the output. Offset
     tuning holds still in closed loop: the mean P correction is the drive's offset (iterated).
     Tests: test_e16_gain_tuning_centres_the_differential_counter, test_offset_tuning_*,
     test_direction_check_*, test_cycle_test_reports_the_differential_counter_e17, E15 defaults:
-    test_e15_adjust_speed_defaults_to_10_percent_of_max_line_speed.
+    test_e15_adjust_speed_defaults_to_10_percent_of_max_line_speed;
+    test_feed_forward.py::test_gain_tuning_is_not_fooled_by_an_offset_l9.
+ L10 Acceleration feed-forward (axisline, not in the manual; [device] acceleration_feed_forward):
+    the feed-forward is taken for the set-point velocity plus lead x set-point acceleration.
+    The FS701's loop (feed-forward + P + I) lets the carriage fall behind a ramping line by
+    e = kC a (drive lag + T/2 + Sampling Time/2) / Kv: about 5 increments per m/s² in the
+    example, which issue 4's bar (2 increments at 1 m/s²) does not allow and which no P-Gain
+    the manual allows removes (I-Time winds up in the approach). The lead is measured by the
+    Adjust program (`tune_lead`, "auto"): with P only the carriage ramps up and down at the
+    adjust speed, and half the difference of the mean counter on the two ramps is the lag
+    still missing (offset and gain errors cancel); it comes out as the drive's lag plus half
+    a cycle (the held output). 0 (default) is the FS701's loop, unchanged, for a parameter
+    set brought over from a real unit. The line's acceleration comes from cutter.py C26.
+    Tests: test_feed_forward.py (the lead in the loop, its measurement for 3 and 6 ms drives,
+    the 1 m/s² line within 2 increments with it and beyond 3 without).
 """
 
 from __future__ import annotations
@@ -79,11 +102,14 @@ __all__ = [
     "tune_gain",
     "tune_offset",
     "cycle_test",
+    "tune_lead",
+    "LEAD_MAX_MS",
 ]
 
 DAC_LIMIT_VOLTS = 10.0
 DAC_STEPS = 2048  # 12 bit signed: +-2048 steps over +-10 V
 OFFSET_FULL_SCALE = 2047  # Ana-Out Offset range -2047..+2047 = -100..+100 %
+LEAD_MAX_MS = 100.0  # the acceleration feed-forward's lead (L10): 0..100 ms
 _DAC_STEP = DAC_LIMIT_VOLTS / DAC_STEPS
 
 
@@ -154,6 +180,7 @@ class PositionLoop:
         self._kp = self.p_volts_per_increment()
         self._offset = self.offset_volts()
         self._max_corr = s.max_correction / 1000.0
+        self._lead = s.acc_feed_forward / 1000.0
 
     def update(
         self,
@@ -163,13 +190,15 @@ class PositionLoop:
         *,
         reset: bool = False,
         sync_mode: bool = False,
+        set_acceleration: float = 0.0,
     ) -> float:
-        """Ana-Out 2 volts of this cycle (positions LU, velocity LU/s)."""
+        """Ana-Out 2 volts of this cycle (positions LU, velocity LU/s, acceleration LU/s²)."""
         s = self.settings
         if s.version != self._version:
             self._constants()
         raw = (set_position - actual_position) * self._kc
-        ff = set_velocity / self._v_max * self._gain  # feed_forward(set_velocity)
+        # feed_forward(set_velocity + lead x set_acceleration): L1, L10
+        ff = (set_velocity + self._lead * set_acceleration) / self._v_max * self._gain
         self.feed_forward_value = ff
         max_corr = self._max_corr
         if reset:
@@ -240,6 +269,7 @@ class AdjustResult:
     differential_min: float = math.nan  # increments
     differential_max: float = math.nan
     iterations: int = 0
+    acc_feed_forward: float = math.nan  # ms (tune_lead)
 
 
 class _AdjustRig:
@@ -296,9 +326,10 @@ class _AdjustRig:
                 step = acc * T
                 v_new = v + (dv if abs(dv) <= step else math.copysign(step, dv))
             ref += 0.5 * (v + v_new) * T
+            a = (v_new - v) / T
             v = v_new
             actual = (self.counts() - c0) / kc
-            volts = self.loop.update(ref, v, actual, reset=not closed_loop)
+            volts = self.loop.update(ref, v, actual, reset=not closed_loop, set_acceleration=a)
             drive.command_voltage(volts)
             drive.step(T)
             e = self.loop.position_error if closed_loop else (ref - actual) * kc
@@ -312,10 +343,12 @@ class _AdjustRig:
         self.mean_correction = corr_sum / n if n else 0.0
         # ramp down (Down key)
         for _ in range(int(round(max(v, 0.0) / acc / T)) + 2):
-            v = max(v - acc * T, 0.0)
+            v_new = max(v - acc * T, 0.0)
+            a = (v_new - v) / T
+            v = v_new
             ref += v * T
             actual = (self.counts() - c0) / kc
-            drive.command_voltage(self.loop.update(ref, v, actual, reset=not closed_loop))
+            drive.command_voltage(self.loop.update(ref, v, actual, reset=not closed_loop, set_acceleration=a))
             drive.step(T)
         drive.command_voltage(0.0)
         return lo, hi, (acc_sum / n if n else math.nan), trace
@@ -372,8 +405,8 @@ def tune_gain(
     """§7.3: find Ana-Out Gain 2 so that the differential counter stays around zero (L9, E16).
 
     Runs closed loop (P only, I-Time ignored) at the adjust speed; the mean counter after the
-    ramp is linear in the gain, so a secant on two gains finds its zero. The setting is
-    changed in `settings` (0.01 V resolution) and reported."""
+    ramp, less the counter standing still, gives the gain that zeroes it (Newton, L9). The
+    setting is changed in `settings` (0.01 V resolution) and reported."""
     speed = _adjust_speed(settings, speed_lu_min)
     i_time = settings.i_time
     settings.i_time = 0.0  # manual §7: integration off for the first steps
@@ -381,24 +414,37 @@ def tune_gain(
         settle = speed / 60.0 / (settings.v_max_line / ramp_time) + 0.5 if ramp_time > 0 else 0.5
         settle = min(settle, run_seconds * 0.8)
 
+        # the differential counter standing still: what is left of the drive's offset after
+        # Ana-Out Offset 2 (one offset step is ~0.05 % of full scale). The gain is right when
+        # the counter at speed is where it stands still (L9); zeroing it at the adjust speed
+        # would make the gain cover the offset, wrong in proportion at other speeds.
+        _, _, standstill, _ = _AdjustRig(settings, period, drive, counts).run(0.0, 0.0, 0.6, settle=0.3)
+
         def mean_error(g: float) -> tuple[float, float, float]:
             settings.ana_out_gain_2 = g
             rig = _AdjustRig(settings, period, drive, counts)
             lo, hi, mean, _ = rig.run(speed, ramp_time, run_seconds, settle=settle)
-            return mean, lo, hi
+            return mean - standstill, lo, hi
 
-        g0 = float(settings.ana_out_gain_2)
-        e0, _, _ = mean_error(g0)
-        g1 = g0 * (1.05 if e0 > 0 else 0.95)
-        e1, _, _ = mean_error(g1)
-        it = 2
-        while it < max_iterations and abs(e1) > 0.25 and e1 != e0:
-            g2 = g1 - e1 * (g1 - g0) / (e1 - e0)
-            g2 = min(max(g2, 0.01), 320.0)
-            g0, e0 = g1, e1
-            g1 = g2
+        # Newton on the P-only balance K (G v/v_max + kp e) = v with kp = Kv G / (kC v_max): the
+        # gain that zeroes e is G (1 + Kv e / (kC v)), whatever the drive's K (L9). One step is
+        # exact in that model; it repeats until the gain moves by less than 0.002 V (a fifth of
+        # the register's step: an error criterion would stop 0.2 % off at a low adjust speed)
+        v = speed / 60.0
+        kv = settings.p_gain / 100.0
+        kc = settings.cut_counts_per_lu
+        if v <= 0.0 or kv <= 0.0:
+            return AdjustResult(False, "gain tuning needs an adjust speed and a P-Gain above 0")
+        g1 = float(settings.ana_out_gain_2)
+        it = 0
+        while it < max_iterations:
             e1, _, _ = mean_error(g1)
             it += 1
+            g2 = min(max(g1 * (1.0 + kv * e1 / (kc * v)), 0.01), 320.0)
+            done = abs(g2 - g1) < 0.002
+            g1 = g2
+            if done:
+                break
         g = round(g1, 2)
         mean, lo, hi = mean_error(g)
         it += 1
@@ -476,3 +522,70 @@ def cycle_test(
     ok = max(abs(lo), abs(hi)) <= tolerance
     return AdjustResult(ok, f"differential counter {lo:+.1f} .. {hi:+.1f} increments while cycling",
                         differential_min=lo, differential_max=hi, iterations=cycles)
+
+
+def tune_lead(
+    settings: Any,
+    period: float,
+    drive: Any,
+    counts: Any,
+    *,
+    speed_lu_min: float | None = None,
+    ramp_seconds: float = 0.4,
+    max_iterations: int = 5,
+) -> AdjustResult:
+    """L10: the acceleration feed-forward's lead (ms) from the differential counter on ramps.
+
+    With P only, a ramp of acceleration a leaves the counter at e = kC a (lead needed - lead)
+    / Kv (Kv = P-Gain/100 with a tuned Ana-Out Gain 2): the velocity the drive falls short by
+    is a x the time it lags. The carriage ramps up to the adjust speed and down again in
+    `ramp_seconds` (at most Acceleration 1); half the difference of the mean counter over
+    the settled part of the two ramps (offset and gain errors cancel) corrects the lead,
+    again until it moves by less than 0.05 ms. `settings.acc_feed_forward` is set (0.1 ms)."""
+    speed = _adjust_speed(settings, speed_lu_min) / 60.0
+    kv = settings.p_gain / 100.0
+    if speed <= 0.0 or kv <= 0.0:
+        return AdjustResult(False, "the lead needs an adjust speed and a P-Gain above 0")
+    acc = min(speed / ramp_seconds, float(settings.acceleration_1))
+    t_ramp = speed / acc
+    hold = 0.2
+    T = float(period)
+    kc = settings.cut_counts_per_lu
+
+    def profile(t: float) -> float:
+        if t < t_ramp:
+            return acc * t
+        if t < t_ramp + hold:
+            return speed
+        if t < 2.0 * t_ramp + hold:
+            return speed - acc * (t - t_ramp - hold)
+        return 0.0
+
+    # the settled part of each ramp: its last 40 % (the loop settles with 1/Kv <= 0.2 t_ramp
+    # for the recommended P-Gains)
+    n = int(round(t_ramp / T))
+    first = n - int(0.4 * n)
+    up = slice(first, n)
+    down = slice(n + int(round(hold / T)) + first, n + int(round(hold / T)) + n)
+    i_time = settings.i_time
+    settings.i_time = 0.0
+    lead = float(settings.acc_feed_forward)
+    try:
+        it = 0
+        step = math.inf
+        while it < max_iterations and abs(step) >= 0.05:
+            settings.acc_feed_forward = lead
+            rig = _AdjustRig(settings, T, drive, counts)
+            _, _, _, trace = rig.run(0.0, 0.0, 2.0 * t_ramp + hold + 0.1, profile=profile)
+            e_up = sum(trace[up]) / len(trace[up])
+            e_down = sum(trace[down]) / len(trace[down])
+            step = 0.5 * (e_up - e_down) / kc * kv / acc * 1000.0  # ms
+            lead = min(max(lead + step, 0.0), LEAD_MAX_MS)
+            it += 1
+        lead = round(lead, 1)
+        settings.acc_feed_forward = lead
+        ok = abs(step) < 0.05 and 0.0 < lead < LEAD_MAX_MS
+        msg = f"acceleration feed-forward lead = {lead:.1f} ms" + ("" if ok else " (did not settle)")
+        return AdjustResult(ok, msg, iterations=it, acc_feed_forward=lead)
+    finally:
+        settings.i_time = i_time

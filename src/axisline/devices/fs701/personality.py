@@ -68,6 +68,13 @@ Decisions:
     not added to the machine's clock); the carriage is then back where it stood, unpowered.
     Holding the bit does not repeat it; clear and set it again. A rising edge with Control
     Enable ON (only possible from the CAN word) is logged as refused in `programs`.
+    The Adjust card's Vir. Master Speed and Ramp Time are [device.adjust] speed and ramp_time
+    (`adjust_steps`); with acceleration_feed_forward = "auto" the Adjust program also measures
+    the feed-forward's lead (loop.py L10), kept in the cutter's settings (it is not an FS701
+    register); a number is used as given, 0 is the FS701's loop.
+    Tests: test_feed_forward.py::test_the_adjust_speed_is_the_one_configured,
+    test_auto_without_commissioning_stays_off_until_the_adjust_program_runs,
+    test_programs.py::test_serial_adjust_program_tunes_offset_and_gain_at_runtime.
  D5 Process values and status words are refreshed from the cutter when a protocol reads them
     (at a cycle boundary), not every cycle.
  D6 persist() (serve's shutdown) writes the live parameter set, counters and I/O assignment to
@@ -106,7 +113,7 @@ from .io_assign import (
 )
 from .config import DEFAULT_INPUTS, Fs701Config, ShearConfig
 from .line import BatchJob, CommissioningReport, CutMeasurement, CutMeter, Shear, batch_statistics
-from .loop import cycle_test, direction_check, tune_gain, tune_offset
+from .loop import cycle_test, direction_check, tune_gain, tune_lead, tune_offset
 from .parameters import ParameterError, ParameterSet, parameter
 from .paramfile import ParamFileError, load_parameter_file, save_parameters
 from .registers import RegisterMap, modbus_read, modbus_write, ModbusError
@@ -123,8 +130,21 @@ _CUTTER_INPUTS = {f.name for f in fields(CutterInputs)}
 _BIT_CE = 1 << 0  # Control Enable
 _BIT_ADJUST = 1 << 30  # Adjust Program (serial / bus only)
 _BIT_TEST = 1 << 31  # Test Program (serial / bus only)
-ADJUST_STEPS = (("direction", direction_check), ("offset", tune_offset), ("gain", tune_gain))
 TEST_PROGRAM_CYCLES = 2  # up/down cycles the Test program runs per start (#31 Test Counter)
+
+
+def adjust_steps(config: Fs701Config) -> tuple[tuple[str, Callable[..., Any]], ...]:
+    """D4: the Adjust program's steps at the [device.adjust] speed and ramp; with
+    acceleration_feed_forward = "auto" also the feed-forward lead (loop.py L10)."""
+    a = config.adjust
+    steps: list[tuple[str, Callable[..., Any]]] = [
+        ("direction", partial(direction_check, speed_lu_min=a.speed, ramp_time=a.ramp_time)),
+        ("offset", tune_offset),
+        ("gain", partial(tune_gain, speed_lu_min=a.speed, ramp_time=a.ramp_time)),
+    ]
+    if config.acceleration_feed_forward == "auto":
+        steps.append(("lead", partial(tune_lead, speed_lu_min=a.speed)))
+    return tuple(steps)
 
 
 class _DrivecomPort:
@@ -279,6 +299,9 @@ class Fs701Personality(Personality):
         self.registers = RegisterMap(params, StatusImage(), io)
         self.settings = CutterSettings.from_parameters(params)
         self._car_encoder = unit.encoder
+        lead = config.acceleration_feed_forward
+        self.settings.acc_feed_forward = 0.0 if lead == "auto" else float(lead)
+        self._adjust_steps = adjust_steps(config)
         self.commissioning = CommissioningReport()
         if config.commissioning:
             self._commission()
@@ -485,7 +508,7 @@ class Fs701Personality(Personality):
         """D4: the Adjust program on the disconnected carriage, then the carriage back home."""
         rep = self.commissioning
         rep.ran = True
-        steps, ok = self._run_on_carriage(ADJUST_STEPS)
+        steps, ok = self._run_on_carriage(self._adjust_steps)
         rep.steps += steps
         rep.ok = ok
         if not ok:
@@ -530,7 +553,7 @@ class Fs701Personality(Personality):
                                   "steps": [], "message": "Adjust/Test Program needs Control Enable OFF"})
             return
         if rising & _BIT_ADJUST and not word & _BIT_TEST:
-            steps, ok = self._run_on_carriage(ADJUST_STEPS)
+            steps, ok = self._run_on_carriage(self._adjust_steps)
             self.programs.append({"t": t, "program": "adjust", "ok": ok, "steps": steps})
         elif rising & _BIT_TEST and not word & _BIT_ADJUST:
             self.cutter.test_counter = 0  # entering the Test program resets #31 (status.py)
@@ -864,7 +887,8 @@ class Fs701Personality(Personality):
             "errors_active": self.registers.errors_text(),
             "counters": {"batch": c.batch_counter, "waste": c.waste_counter},
             "commissioning": {"ran": self.commissioning.ran, "ok": self.commissioning.ok, "steps": self.commissioning.steps,
-                              "ana_out_offset_2": s.ana_out_offset_2, "ana_out_gain_2": s.ana_out_gain_2},
+                              "ana_out_offset_2": s.ana_out_offset_2, "ana_out_gain_2": s.ana_out_gain_2,
+                              "acc_feed_forward_ms": s.acc_feed_forward},
             "job_events": list(self.job.events) if self.job is not None else [],
             "parameters_changed": {d.parameter.attr: d.theirs for d in self.params.changed_from_defaults()},
             "state": {"control": c.control_state.name, "cut": c.cut_state.name, "outputs_on": self.registers.status.snapshot()["outputs_on"]},

@@ -114,7 +114,9 @@ def report_section(d: Mapping[str, Any], plots: list[Path] | None = None) -> str
     if com["ran"]:
         lines += ["### Commissioning (Adjust program, manual §7)", ""]
         lines += [f"- {s['step']}: {'ok' if s['ok'] else 'FAILED'}: {s['message']}" for s in com["steps"]]
-        lines += [f"- set: Ana-Out Offset 2 = {com['ana_out_offset_2']}, Ana-Out Gain 2 = {com['ana_out_gain_2']:.2f} V", ""]
+        lead = com.get("acc_feed_forward_ms") or 0.0
+        lines += [f"- set: Ana-Out Offset 2 = {com['ana_out_offset_2']}, Ana-Out Gain 2 = {com['ana_out_gain_2']:.2f} V"
+                  + (f", acceleration feed-forward {lead:.1f} ms" if lead else ""), ""]
     if d["job_events"]:
         lines += ["### Batch job", "", "| t [s] | event |", "|---|---|"]
         lines += [f"| {e['t']:.3f} | {e['text']} |" for e in d["job_events"]]
@@ -366,6 +368,8 @@ def config_table_markdown(model: Any = None) -> str:
         "inputs": "table: name = true/false or a name",
         "outputs": "table: name = io output",
         "shear": "table [device.shear]",
+        "adjust": "table [device.adjust]",
+        "acceleration_feed_forward": "float or 'auto'",
     }
     lines = ["| key | type | default | allowed | meaning |", "|---|---|---|---|---|"]
     for name, info in model.model_fields.items():
@@ -383,7 +387,12 @@ def config_table_markdown(model: Any = None) -> str:
                 default = "(its defaults)"
         else:
             default = "none" if info.default is None else repr(info.default).replace("True", "true").replace("False", "false")
-        lines.append(f"| `{name}` | {_md(t)} | {_md(default)} | {_md(allowed_range(info) or '')} | {_md(info.description or '')} |")
+        allowed = allowed_range(info) or ""
+        if name == "acceleration_feed_forward":  # a number range or a word: the validator's
+            from .loop import LEAD_MAX_MS
+
+            allowed = f">= 0.0 and <= {LEAD_MAX_MS}, or 'auto'"
+        lines.append(f"| `{name}` | {_md(t)} | {_md(default)} | {_md(allowed)} | {_md(info.description or '')} |")
     return "\n".join(lines) + "\n"
 
 
