@@ -9,7 +9,9 @@
 - compax: one machine cycle of the COMPAX cam slave on a 2500-point curve, with and without
   label correction (reference: real time);
 - fs701: the flying shear line of examples/flying_shear.toml after commissioning, simulated
-  seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time).
+  seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time);
+  and the cut accuracy of the three FS701 examples (issue 4's quality bars: deterministic
+  figures in carriage increments, no timing).
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
@@ -24,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_cycle import bench_cycle  # noqa: E402
 from bench_compax import bench_compax  # noqa: E402
-from bench_fs701 import bench_fs701  # noqa: E402
+from bench_fs701 import bench_fs701, cut_accuracy  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
@@ -39,6 +41,8 @@ def main() -> None:
     bench_sync()
     print()
     bench_fs701()
+    print()
+    cut_accuracy()
     print()
     bench_compax()
 
