@@ -82,12 +82,38 @@ def bench_fs701(runs: int = 5) -> None:
     print(f"  Python bytecodes per cycle (deterministic, scope off): {bytecodes_per_cycle():.0f}")
 
 
+_RAMPS = EXAMPLE.parent / "flying_shear_ramps.toml"
+# the print-mark example on the ramps example's line, with its feed-forward and Sampling Time
+_MARKS_ON_RAMPS = {
+    "material": "ramps",
+    "device": {"acceleration_feed_forward": "auto", "batch": 30, "tolerance_fault": False},
+    "device.parameters": {"sampling_time": 8},
+    "machine": {"duration": 45.0},
+}
 ACCURACY_RUNS = (
     ("flying_shear.toml", {}, "0.25 m/s² ramps, FS701 loop"),
     ("flying_shear_printmark.toml", {}, "print marks, FS701 loop"),
     ("flying_shear_ramps.toml", {}, "1 m/s² ramps, acceleration feed-forward"),
-    ("flying_shear_ramps.toml", {"acceleration_feed_forward": 0.0, "tolerance_fault": False}, "1 m/s² ramps, FS701 loop"),
+    ("flying_shear_ramps.toml", {"device": {"acceleration_feed_forward": 0.0, "tolerance_fault": False}}, "1 m/s² ramps, FS701 loop"),
+    ("flying_shear_printmark.toml", _MARKS_ON_RAMPS, "print marks, 1 m/s² ramps, feed-forward"),
 )
+
+
+def accuracy_machine(name: str, patch: dict) -> Machine:
+    """An example with `patch`: {"table": {key: value}} merged in ("device.parameters" for the
+    nested table; "material": "ramps" takes the ramps example's strip)."""
+    path = EXAMPLE.parent / name
+    data = load_machine_file(path).model_dump()
+    data["trace"]["enabled"] = False
+    for table, values in patch.items():
+        if values == "ramps":
+            data[table] = load_machine_file(_RAMPS).model_dump()[table]
+            continue
+        target = data
+        for part in table.split("."):
+            target = target[part]
+        target.update(values)
+    return Machine(parse_machine(data, str(path)), source=str(path))
 
 
 def _worst(values: list[float]) -> str:
@@ -97,12 +123,8 @@ def _worst(values: list[float]) -> str:
 def cut_accuracy() -> None:
     print("fs701 cut accuracy, carriage increments (max |error|; deterministic):")
     print("  example                       line                                      constant  ramps  marks")
-    for name, device, what in ACCURACY_RUNS:
-        path = EXAMPLE.parent / name
-        data = load_machine_file(path).model_dump()
-        data["trace"]["enabled"] = False
-        data["device"].update(device)
-        m = Machine(parse_machine(data, str(path)), source=str(path))
+    for name, patch, what in ACCURACY_RUNS:
+        m = accuracy_machine(name, patch)
         m.run()
         cuts = m.device.cuts
         constant = [c.error_counts for c in cuts if c.error_counts is not None and c.constant_speed]

@@ -204,6 +204,24 @@ def test_without_the_feed_forward_the_same_line_misses_the_bar():
     assert max(abs(c.error_counts) for c in pieces) > 3.0
 
 
+def test_print_marks_on_a_line_ramping_at_1_m_s2_are_cut_within_2_increments():
+    """Issue 4: "with print marks: the error to the marks, likewise": the print-mark example on
+    the ramps example's strip, with the feed-forward measured and Sampling Time 8 ms."""
+    marks = EXAMPLES / "flying_shear_printmark.toml"
+    data = tomllib.loads(marks.read_text())
+    data["trace"] = {"enabled": False}
+    data["material"] = tomllib.loads(RAMPS.read_text())["material"]
+    data["machine"]["duration"] = 45.0
+    data["device"].update(acceleration_feed_forward="auto", batch=30)
+    data["device"]["parameters"]["sampling_time"] = 8
+    m = Machine(parse_machine(data, str(marks)), source=str(marks))
+    result = m.run()
+    assert result.completed and not result.faults
+    offsets = [c.mark_offset_counts for c in m.device.cuts if c.mark_offset_counts is not None]
+    assert len(offsets) == 30
+    assert max(map(abs, offsets)) <= 2.0
+
+
 def test_a_fixed_lead_is_used_as_given():
     m = _ramps(acceleration_feed_forward=2.5, batch=2)
     assert m.device.settings.acc_feed_forward == 2.5
