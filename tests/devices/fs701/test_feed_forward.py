@@ -93,12 +93,29 @@ def test_lead_tuning_measures_the_drive_lag_and_removes_the_ramp_error_l10(tau):
     assert abs(e_up - e_down) / 2.0 < 0.1 * expected
 
 
-def test_lead_tuning_needs_a_p_gain():
+def test_lead_tuning_needs_a_p_gain_and_a_ramp_that_shows_the_lead():
     s = demo_settings()
     s.p_gain = 0
     drive, counts = adjust_plant(s)
     r = tune_lead(s, 0.001, drive, counts)
-    assert not r.ok and "P-Gain" in r.message
+    assert not r.ok and "P-Gain" in r.message and s.acc_feed_forward == 0.0
+    s = demo_settings()
+    s.acceleration_1 = 100  # LU/s²: 1 ms of lead is 0.007 increments on the counter
+    r = tune_lead(s, 0.001, drive, counts)
+    assert not r.ok and "Acceleration 1" in r.message and s.acc_feed_forward == 0.0
+
+
+def test_a_gentle_acceleration_1_shortens_the_lead_run_not_lengthens_it():
+    """Acceleration 1 = 4000 LU/s² at a 10000 LU/s adjust speed would ramp 2.5 s: the run tops
+    out at 8000 LU/s instead (2 s ramps), and still finds the lead."""
+    s = demo_settings()
+    s.acceleration_1 = 4000
+    drive, counts = adjust_plant(s, time_constant=0.003)
+    start = drive.position
+    r = tune_lead(s, 0.001, drive, counts, speed_lu_min=600_000)
+    assert r.ok and s.acc_feed_forward == pytest.approx(3.5, abs=0.2)
+    # each run: two 2 s ramps to 8000 LU/s and the hold: 8000 LU up, 1600 held, 8000 down
+    assert (drive.position - start) / r.iterations == pytest.approx(17600.0, rel=0.02)
 
 
 def test_gain_tuning_is_not_fooled_by_an_offset_l9():

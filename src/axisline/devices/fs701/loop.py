@@ -110,6 +110,7 @@ DAC_LIMIT_VOLTS = 10.0
 DAC_STEPS = 2048  # 12 bit signed: +-2048 steps over +-10 V
 OFFSET_FULL_SCALE = 2047  # Ana-Out Offset range -2047..+2047 = -100..+100 %
 LEAD_MAX_MS = 100.0  # the acceleration feed-forward's lead (L10): 0..100 ms
+RAMP_MAX_S = 2.0  # the lead measurement's ramps last at most this long
 _DAC_STEP = DAC_LIMIT_VOLTS / DAC_STEPS
 
 
@@ -539,18 +540,35 @@ def tune_lead(
     With P only, a ramp of acceleration a leaves the counter at e = kC a (lead needed - lead)
     / Kv (Kv = P-Gain/100 with a tuned Ana-Out Gain 2): the velocity the drive falls short by
     is a x the time it lags. The carriage ramps up to the adjust speed and down again in
-    `ramp_seconds` (at most Acceleration 1); half the difference of the mean counter over
-    the settled part of the two ramps (offset and gain errors cancel) corrects the lead,
-    again until it moves by less than 0.05 ms. `settings.acc_feed_forward` is set (0.1 ms)."""
+    `ramp_seconds` or 8/Kv (at most Acceleration 1, and then at most that or RAMP_MAX_S long:
+    a lower top speed); half the difference of the mean counter over the settled part of the two ramps
+    (offset and gain errors cancel) corrects the lead, again until it moves by less than
+    0.05 ms. `settings.acc_feed_forward` is set (0.1 ms). A ramp too gentle to show the lead
+    on the counter (under 0.2 increments per ms) is refused with the reason."""
     speed = _adjust_speed(settings, speed_lu_min) / 60.0
     kv = settings.p_gain / 100.0
     if speed <= 0.0 or kv <= 0.0:
         return AdjustResult(False, "the lead needs an adjust speed and a P-Gain above 0")
-    acc = min(speed / ramp_seconds, float(settings.acceleration_1))
+    # the ramps last long enough for the loop to settle in their first 60 % (8/Kv), and at
+    # most that or RAMP_MAX_S: a gentle Acceleration 1 gets a lower top speed, not a longer run
+    t_min = max(ramp_seconds, 8.0 / kv)
+    acc = min(speed / t_min, float(settings.acceleration_1))
+    t_max = max(RAMP_MAX_S, t_min)
+    if speed / acc > t_max:
+        speed = acc * t_max
     t_ramp = speed / acc
     hold = 0.2
     T = float(period)
     kc = settings.cut_counts_per_lu
+    # what 1 ms of lead is worth on the counter: below 0.2 increments the mean counter (good
+    # to a few hundredths) cannot place the lead to a few tenths of a millisecond
+    per_ms = kc * acc * 0.001 / kv
+    if per_ms < 0.2:
+        return AdjustResult(
+            False,
+            f"the lead cannot be measured: a ramp of {acc:g} LU/s² (Acceleration 1) moves the counter only "
+            f"{per_ms:.2f} increments per ms of lead; raise Acceleration 1 or the adjust speed",
+        )
 
     def profile(t: float) -> float:
         if t < t_ramp:
@@ -561,8 +579,8 @@ def tune_lead(
             return speed - acc * (t - t_ramp - hold)
         return 0.0
 
-    # the settled part of each ramp: its last 40 % (the loop settles with 1/Kv <= 0.2 t_ramp
-    # for the recommended P-Gains)
+    # the settled part of each ramp: its last 40 % (from 4.8/Kv on: the start's transient is
+    # down to 1 %)
     n = int(round(t_ramp / T))
     first = n - int(0.4 * n)
     up = slice(first, n)
