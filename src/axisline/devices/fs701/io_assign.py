@@ -514,6 +514,11 @@ class EdgeDetector:
     def __init__(self, initial: int = 0) -> None:
         self._last = initial
 
+    @property
+    def last(self) -> int:
+        """The word of the last `update` (or `reset`)."""
+        return self._last
+
     def update(self, word: int) -> Edges:
         last, self._last = self._last, word
         return Edges(word & ~last, last & ~word, word)

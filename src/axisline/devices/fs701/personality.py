@@ -594,15 +594,12 @@ class Fs701Personality(Personality):
             self._hw_levels = levels
             self._hw_word = self.registers.io.hardware_command_word(levels)
         reg = self.registers
-        st = reg.status
         hw = self._hw_word
-        word = hw | st._serial | st.can_commands
-        # the register service reacts to edges of All Commands only: none when neither the
-        # hardware word nor All Commands changed since its last call (read here, in the
-        # compiled cycle: a call into the interpreted register map costs more than the rest)
-        if st.hardware_commands != hw or word != reg._edges._last:
+        # the register service reacts to edges of All Commands only: skipped when neither the
+        # hardware word nor All Commands changed since its last call
+        if reg.needs_service(hw):
             reg.set_hardware_commands(hw)
-            word = st.all_commands
+        word = reg.status.all_commands
         if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
             self._service_programs(cycle, word)
         # the cutter's inputs from All Commands: one precomputed field table per word seen

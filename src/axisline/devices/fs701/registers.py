@@ -83,7 +83,7 @@ import bisect
 import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Final
 
 from .io_assign import (
     COMMAND_BASE,
@@ -142,12 +142,12 @@ MAX_TEXT = 16  # longest value text accepted (sign + 10 digits + point + slack)
 
 
 class RegisterKind:
-    PARAMETER = "parameter"
-    RESERVED = "reserved"
-    PROCESS = "process value"
-    COMMAND = "command"
-    OUTPUT = "output"
-    STATUS = "status word"
+    PARAMETER: Final = "parameter"
+    RESERVED: Final = "reserved"
+    PROCESS: Final = "process value"
+    COMMAND: Final = "command"
+    OUTPUT: Final = "output"
+    STATUS: Final = "status word"
 
 
 @dataclass(frozen=True, slots=True)
@@ -258,7 +258,7 @@ def _range_text(reg: Register) -> str:
     return f"{format_wire(reg, reg.minimum)}..{format_wire(reg, reg.maximum)} (raw)"
 
 
-def _check_range(reg: Register, raw: Any) -> int:
+def _check_range(reg: Register, raw: object) -> int:
     if isinstance(raw, bool) or not isinstance(raw, int):
         raise RegisterFormatError(reg.code, f"{reg.name} (0x{reg.code:04X}): value {raw!r} is not an integer raw value")
     p = reg.parameter
@@ -398,28 +398,31 @@ class RegisterMap:
         return format_display(register(code), self.read(code))
 
     # ---- writes ---------------------------------------------------------------------------
-    def check_write(self, code: int, raw: int) -> Register:
+    # (raw values typed `object`: a value of the wrong type gets RegisterFormatError, also
+    # when this module is compiled, where an `int` argument would be a TypeError at the call)
+    def check_write(self, code: int, raw: object) -> Register:
         """Raise the error a write would raise; changes nothing."""
         reg = register(code)
         if not reg.writable:
             raise ReadOnlyRegisterError(code, f"{reg.name} (0x{code:04X}) is read only")
-        _check_range(reg, raw)
+        value = _check_range(reg, raw)
         if reg.kind == RegisterKind.COMMAND:
-            self._check_serial_word(self._with_bit(code - COMMAND_BASE, raw), reg)
+            self._check_serial_word(self._with_bit(code - COMMAND_BASE, value), reg)
         elif reg.kind == RegisterKind.STATUS:
-            self._check_serial_word(raw, reg)
+            self._check_serial_word(value, reg)
         return reg
 
-    def write(self, code: int, raw: int) -> None:
+    def write(self, code: int, raw: object) -> None:
         """Write a raw value; refused writes raise and change nothing."""
         reg = self.check_write(code, raw)
+        value = _check_range(reg, raw)
         if reg.kind == RegisterKind.PARAMETER:
-            self.params.set_raw(code, raw)
+            self.params.set_raw(code, value)
         elif reg.kind == RegisterKind.COMMAND:
-            self.status.serial_commands = self._with_bit(code - COMMAND_BASE, raw)
+            self.status.serial_commands = self._with_bit(code - COMMAND_BASE, value)
             self.service()
         elif reg.kind == RegisterKind.STATUS:  # 0x0B01
-            self.status.serial_commands = raw
+            self.status.serial_commands = value
             self.service()
         # reserved parameters: 0 accepted, nothing stored
 
@@ -443,14 +446,14 @@ class RegisterMap:
             raise ReadOnlyRegisterError(code, f"{reg.name} (0x{code:04X}) is read only")
         self.write(code, parse_wire(reg, text))
 
-    def write_many(self, values: Iterable[tuple[int, int]]) -> None:
+    def write_many(self, values: Iterable[tuple[int, object]]) -> None:
         """Write several raw values ("Transmit All"); all are checked before any is stored."""
         items = list(values)
         probe_params = self.params.copy()
         for code, raw in items:
             reg = self.check_write(code, raw)
             if reg.kind == RegisterKind.PARAMETER:
-                probe_params.set_raw(code, raw)
+                probe_params.set_raw(code, _check_range(reg, raw))
         for code, raw in items:
             self.write(code, raw)
 
@@ -471,14 +474,22 @@ class RegisterMap:
             raise CommandRefusedError(reg.code, f"{reg.name} (0x{reg.code:04X}): Adjust and Test Program cannot run together")
 
     # ---- device side ----------------------------------------------------------------------
-    def set_hardware_commands(self, word: int) -> Edges:
+    def needs_service(self, hardware_word: int) -> bool:
+        """Whether `set_hardware_commands(hardware_word)` would see anything new: the hardware
+        word or All Commands changed since the last service (the cycle asks every 1 ms)."""
+        st = self.status
+        if st.hardware_commands != hardware_word:
+            return True
+        return (hardware_word | st.serial_commands | st.can_commands) != self._edges.last
+
+    def set_hardware_commands(self, word: object) -> Edges:
         """The device's hardware command word (0x0B00, from IOAssignment.hardware_command_word)."""
         if isinstance(word, bool) or not isinstance(word, int) or not 0 <= word <= 0xFFFF_FFFF:
             raise RegisterRangeError(0x0B00, f"Hardware Commands {word!r} is not a 32-bit word")
         self.status.hardware_commands = word
         return self.service()
 
-    def set_can_commands(self, word: int) -> Edges:
+    def set_can_commands(self, word: object) -> Edges:
         if isinstance(word, bool) or not isinstance(word, int) or not 0 <= word <= 0xFFFF_FFFF:
             raise RegisterRangeError(0x0B02, f"CAN Commands {word!r} is not a 32-bit word")
         self.status.can_commands = word
@@ -645,14 +656,13 @@ def modbus_write(regmap: RegisterMap, address: int, values: list[int]) -> None:
         staged.append((e.code, decode_words(values[i : i + e.words], e.signed)))
         addr += e.words
         i += e.words
+    # one handler: compiled, a name bound in several `except ... as` clauses keeps the first
+    # clause's type
     try:
         regmap.write_many(staged)
-    except ReadOnlyRegisterError as exc:
-        raise ModbusError(2, str(exc), exc.code) from None
-    except CommandRefusedError as exc:
-        raise ModbusError(4, str(exc), exc.code) from None
     except RegisterError as exc:
-        raise ModbusError(3, str(exc), exc.code) from None
+        exception = 2 if isinstance(exc, ReadOnlyRegisterError) else 4 if isinstance(exc, CommandRefusedError) else 3
+        raise ModbusError(exception, str(exc), exc.code) from None
 
 
 class ModbusImage:

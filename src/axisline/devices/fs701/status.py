@@ -58,6 +58,8 @@ Decisions (spec line -> choice -> why):
 
 from __future__ import annotations
 
+from typing import Final
+
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -199,11 +201,11 @@ STATUS_WORDS_BY_CODE: dict[int, StatusWord] = {w.code: w for w in STATUS_WORDS}
 
 
 class ClearReason:
-    CLEAR_ERROR = "clear_error"  # rising edge of input "Clear Error"
-    CONTROL_ENABLE_OFF = "control_enable_off"
-    RESET_BUTTON = "reset_button"
-    POWER_CYCLE = "power_cycle"
-    ALL = frozenset({CLEAR_ERROR, CONTROL_ENABLE_OFF, RESET_BUTTON, POWER_CYCLE})
+    CLEAR_ERROR: Final = "clear_error"  # rising edge of input "Clear Error"
+    CONTROL_ENABLE_OFF: Final = "control_enable_off"
+    RESET_BUTTON: Final = "reset_button"
+    POWER_CYCLE: Final = "power_cycle"
+    ALL: Final = frozenset({CLEAR_ERROR, CONTROL_ENABLE_OFF, RESET_BUTTON, POWER_CYCLE})
 
 
 _STANDARD = ClearReason.ALL
@@ -332,7 +334,8 @@ class StatusImage:
         self._causes = 0  # errors whose cause is present now
 
     # ---- process values ---------------------------------------------------------------------
-    def set_process_value(self, key: "str | int", value: int) -> None:
+    # (values typed `object`: a wrong type gets StatusError, also when compiled)
+    def set_process_value(self, key: "str | int", value: object) -> None:
         pv = process_value(key)
         if pv.code in COUNTER_MIRRORS:
             raise StatusError(f"{pv.name} (0x{pv.code:04X}) mirrors register 0x{COUNTER_MIRRORS[pv.code]:04X}; set the counter")
@@ -342,13 +345,13 @@ class StatusImage:
             raise StatusError(f"{pv.name} (0x{pv.code:04X}): {value!r} is not a 32-bit signed integer")
         self._process[pv.code] = value
 
-    def update_process_values(self, values: Mapping["str | int", int]) -> None:
+    def update_process_values(self, values: Mapping["str | int", object]) -> None:
         """Several values at once; all are checked first."""
         probe = StatusImage()
         for k, v in values.items():
             probe.set_process_value(k, v)
         for k, v in values.items():
-            self._process[process_value(k).code] = v
+            self.set_process_value(k, v)
 
     def process_value(self, key: "str | int") -> int:
         return self._process[process_value(key).code]
