@@ -355,6 +355,18 @@ class _AdjustRig:
         return lo, hi, (acc_sum / n if n else math.nan), trace
 
 
+def _up_hold_down(t: float, acc: float, speed: float, t_ramp: float, hold: float) -> float:
+    """The Adjust runs' speed profile at `t`: up at `acc` for `t_ramp`, `hold` at `speed`,
+    down again, then 0."""
+    if t < t_ramp:
+        return acc * t
+    if t < t_ramp + hold:
+        return speed
+    if t < 2 * t_ramp + hold:
+        return speed - acc * (t - t_ramp - hold)
+    return 0.0
+
+
 def _adjust_speed(settings: Any, speed_lu_min: float | None) -> float:
     """§7.1: Vir. Master Speed default 10 % of Max. Line Speed (E15)."""
     return 0.1 * settings.max_line_speed if speed_lu_min is None else float(speed_lu_min)
@@ -509,14 +521,7 @@ def cycle_test(
     period_t = 2.0 * (t_ramp + hold)
 
     def profile(t: float) -> float:
-        u = t % period_t
-        if u < t_ramp:
-            return acc * u
-        if u < t_ramp + hold:
-            return speed
-        if u < 2 * t_ramp + hold:
-            return speed - acc * (u - t_ramp - hold)
-        return 0.0
+        return _up_hold_down(t % period_t, acc, speed, t_ramp, hold)
 
     rig = _AdjustRig(settings, period, drive, counts)
     lo, hi, _, _ = rig.run(0.0, ramp_time, cycles * period_t, profile=profile)
@@ -541,9 +546,9 @@ def tune_lead(
     / Kv (Kv = P-Gain/100 with a tuned Ana-Out Gain 2): the velocity the drive falls short by
     is a x the time it lags. The carriage ramps up to the adjust speed and down again in
     `ramp_seconds` or 8/Kv (at most Acceleration 1, and then at most that or RAMP_MAX_S long:
-    a lower top speed); half the difference of the mean counter over the settled part of the two ramps
-    (offset and gain errors cancel) corrects the lead, again until it moves by less than
-    0.05 ms. `settings.acc_feed_forward` is set (0.1 ms). A ramp too gentle to show the lead
+    a lower top speed); half the difference of the mean counter over the settled part of the
+    two ramps (offset and gain errors cancel) corrects the lead, again until it moves by less
+    than 0.05 ms. `settings.acc_feed_forward` is set (0.1 ms). A ramp too gentle to show the lead
     on the counter (under 0.2 increments per ms) is refused with the reason."""
     speed = _adjust_speed(settings, speed_lu_min) / 60.0
     kv = settings.p_gain / 100.0
@@ -571,13 +576,7 @@ def tune_lead(
         )
 
     def profile(t: float) -> float:
-        if t < t_ramp:
-            return acc * t
-        if t < t_ramp + hold:
-            return speed
-        if t < 2.0 * t_ramp + hold:
-            return speed - acc * (t - t_ramp - hold)
-        return 0.0
+        return _up_hold_down(t, acc, speed, t_ramp, hold)
 
     # the settled part of each ramp: its last 40 % (from 4.8/Kv on: the start's transient is
     # down to 1 %)
