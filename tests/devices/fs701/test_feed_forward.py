@@ -276,3 +276,23 @@ def test_the_adjust_speed_is_the_one_configured():
     assert steps["gain"].keywords["speed_lu_min"] == 30000
     assert steps["lead"].keywords["speed_lu_min"] == 30000
     assert dict(_ramps(adjust={}, batch=2).device._adjust_steps)["gain"].keywords["speed_lu_min"] is None
+
+
+def test_the_test_program_cycles_at_the_adjust_speed():
+    """The Test program's "Cycle" (§7.4) ramps the carriage to the [device.adjust] speed."""
+    from axisline.devices.fs701.personality import TEST_PROGRAM_CYCLES
+
+    m = _ramps(adjust={"speed": 30000}, commissioning=False, batch=0)
+    dev = m.device
+    drive = m.units["carriage"].drive
+    encoder = dev._car_encoder
+    speeds = []
+
+    def counts() -> int:  # the carriage counter, watching the drive's speed each cycle
+        speeds.append(drive.velocity)
+        return encoder.sample()
+
+    drive.enable(True)
+    r = dev._cycle_test(dev.settings, m.period, drive, counts)
+    assert r.iterations == TEST_PROGRAM_CYCLES
+    assert max(speeds) == pytest.approx(30000 / 60.0, rel=0.03)  # 30 m/min, not the 10 m/min default

@@ -69,7 +69,7 @@ Decisions:
     Holding the bit does not repeat it; clear and set it again. A rising edge with Control
     Enable ON (only possible from the CAN word) is logged as refused in `programs`.
     The Adjust card's Vir. Master Speed and Ramp Time are [device.adjust] speed and ramp_time
-    (`adjust_steps`); with acceleration_feed_forward = "auto" the Adjust program also measures
+    (`adjust_steps`, and the Test program's cycle); with acceleration_feed_forward = "auto" the Adjust program also measures
     the feed-forward's lead (loop.py L10), kept in the cutter's settings (it is not an FS701
     register); a number is used as given, 0 is the FS701's loop.
     Tests: test_feed_forward.py::test_the_adjust_speed_is_the_one_configured,
@@ -562,7 +562,8 @@ class Fs701Personality(Personality):
             self.programs.append({"t": t, "program": "test", "ok": ok, "steps": steps})
 
     def _cycle_test(self, s: Any, period: float, drive: Any, counts: Callable[[], int]) -> Any:
-        return cycle_test(s, period, drive, counts, cycles=TEST_PROGRAM_CYCLES)
+        a = self.config.adjust  # the Test program's "Cycle" runs at the Adjust card's speed and ramp
+        return cycle_test(s, period, drive, counts, speed_lu_min=a.speed, ramp_time=a.ramp_time, cycles=TEST_PROGRAM_CYCLES)
 
     # ------------------------------------------------------------------ the loop (POSITION_LOOP)
 
