@@ -767,6 +767,16 @@ class LineMaster:
         return self._a
 
     @property
+    def velocity_now(self) -> float:
+        """LU/s: the measured speed with its lag (Sampling Time / 2) made up, x acceleration,
+        when the acceleration feed-forward is on (C26, loop.py L10); otherwise, and for the
+        virtual master (exact), the measurement itself, as the FS701 uses it."""
+        lag = self.settings.line_speed_lag
+        if lag > 0.0 and not self.use_virtual:
+            return self._v + lag * self._a
+        return self._v
+
+    @property
     def cycle(self) -> int | None:
         return self._cycle
 
@@ -1532,14 +1542,10 @@ class Cutter:
             self._sync_setpoint(cycle)
             return
         V = self._ap_V
-        st = self.settings
-        kl_mc = st.pulses_line_1000
+        kl_mc = self.settings.pulses_line_1000
         tau = (x_mc - self._ap_start_mc) / (kl_mc * V)
         s, ds, dds, _ = self._ap_profile.sample(tau)
-        v_line = m.velocity
-        if st.line_speed_lag > 0.0 and not m.use_virtual:
-            v_line += st.line_speed_lag * m.acceleration
-        k = v_line / V
+        k = m.velocity_now / V
         self._p = self.home_position + s
         self._v = ds * k
         # d²/dt² of s(x / V) with x the master's travel: the cam's curvature at the master's
@@ -1552,10 +1558,8 @@ class Cutter:
         R = self._R
         kl_mc = s.pulses_line_1000
         p = self.home_position + self._s_sync + R * (m.counts * 1000 - self._ap_sync_mc) / kl_mc
+        v = R * m.velocity_now
         a = R * m.acceleration
-        v = R * m.velocity
-        if s.line_speed_lag > 0.0 and not m.use_virtual:
-            v += s.line_speed_lag * a  # the line speed of now, not Sampling Time / 2 ago (L10)
         st = self.cut_state
         # gap (C16): cycloidal extra displacement over Gap Time
         if st is CutState.GAP and self._gap_profile is not None:

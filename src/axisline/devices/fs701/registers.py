@@ -402,6 +402,10 @@ class RegisterMap:
     # when this module is compiled, where an `int` argument would be a TypeError at the call)
     def check_write(self, code: int, raw: object) -> Register:
         """Raise the error a write would raise; changes nothing."""
+        return self._checked(code, raw)[0]
+
+    def _checked(self, code: int, raw: object) -> tuple[Register, int]:
+        """The register and the raw value a write would store, or the error it would raise."""
         reg = register(code)
         if not reg.writable:
             raise ReadOnlyRegisterError(code, f"{reg.name} (0x{code:04X}) is read only")
@@ -410,12 +414,11 @@ class RegisterMap:
             self._check_serial_word(self._with_bit(code - COMMAND_BASE, value), reg)
         elif reg.kind == RegisterKind.STATUS:
             self._check_serial_word(value, reg)
-        return reg
+        return reg, value
 
     def write(self, code: int, raw: object) -> None:
         """Write a raw value; refused writes raise and change nothing."""
-        reg = self.check_write(code, raw)
-        value = _check_range(reg, raw)
+        reg, value = self._checked(code, raw)
         if reg.kind == RegisterKind.PARAMETER:
             self.params.set_raw(code, value)
         elif reg.kind == RegisterKind.COMMAND:
@@ -451,9 +454,9 @@ class RegisterMap:
         items = list(values)
         probe_params = self.params.copy()
         for code, raw in items:
-            reg = self.check_write(code, raw)
+            reg, value = self._checked(code, raw)
             if reg.kind == RegisterKind.PARAMETER:
-                probe_params.set_raw(code, _check_range(reg, raw))
+                probe_params.set_raw(code, value)
         for code, raw in items:
             self.write(code, raw)
 

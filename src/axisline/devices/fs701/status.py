@@ -350,8 +350,9 @@ class StatusImage:
         probe = StatusImage()
         for k, v in values.items():
             probe.set_process_value(k, v)
-        for k, v in values.items():
-            self.set_process_value(k, v)
+        for k in values:  # the checked values, from the probe
+            code = process_value(k).code
+            self._process[code] = probe._process[code]
 
     def process_value(self, key: "str | int") -> int:
         return self._process[process_value(key).code]
