@@ -46,12 +46,12 @@ __all__ = [
 
 PROGRAM_SIZE = 3000
 
-_NUMBERISH = re.compile(r"[+-]?\s?V\d+|[+-0]?\s?[\d.,]+")
+_NUMBERISH = re.compile(r"[+-]?[ \t]?V\d+|[+-]?[ \t]?[\d.,]+")
 _OPERAND = re.compile(r"[IQM]?\d+\.\d+(?:\.\d+)?")
 _DIGITS = re.compile(r"\d+")
 _VARIABLE = re.compile(r"[+-]?V\d+")
 _CHUNK = re.compile(r"\S+")
-_COMMENT = re.compile(r"\s*(?:[-;]|//)")
+_COMMENT = re.compile(r" *\t|\s*(?:[-;]|//)")  # the manual's listings: a tab, or "- comment"
 _LISTING = re.compile(r"\s*(\d+)[ \t]+([A-Za-z]{3})(?=\s|$)(.*)\Z", re.S)
 
 
@@ -139,7 +139,7 @@ def parse_instruction(number: int, mnemonic: str, data: str, *, comments: bool =
     if rest.strip():
         if not (comments and _COMMENT.match(rest)):
             raise ClmError("0A", f"{cmd.mnemonic}: unexpected {rest.strip()[:24]!r} after the last field ({_syntax(cmd)})")
-        comment = re.sub(r"^\s*(?:-|;|//)\s*", "", rest).strip()
+        comment = re.sub(r"^\s*(?:-\s|;|//)?\s*", "", rest).strip()
     return Instruction(number, cmd, tuple(values), comment)
 
 
