@@ -253,6 +253,44 @@ def compax_plot(
         raise typer.Exit(2) from None
 
 
+clm_app = typer.Typer(help="Rexroth CLM1.4 tools: program, parameter, Logic Task and variable files.", no_args_is_help=True)
+app.add_typer(clm_app, name="clm")
+
+
+@clm_app.command("check")
+def clm_check(
+    program: Path = typer.Argument(..., help="program file (telegrams #_N... or a listing 0000 POI ...)"),
+    params: Optional[Path] = typer.Option(None, "--params", help="parameter file (#_K... or B000 ...)"),
+    logic: Optional[Path] = typer.Option(None, "--logic", help="Logic Task file (#_P... or 0000 LD ...)"),
+    variables: Optional[Path] = typer.Option(None, "--variables", help="variable file (#_V... or V600 ...)"),
+) -> None:
+    """Check CLM files as the CLM would: every finding as WHERE CODE TEXT; exit 0 clean, 1 warnings, 2 errors."""
+    from .devices.clm.tool import check_command
+
+    raise typer.Exit(check_command(program, params, logic, variables, lambda s: out.print(s, markup=False, highlight=False, soft_wrap=True)))
+
+
+@clm_app.command("convert")
+def clm_convert(
+    source: Path = typer.Argument(..., help="CLM file to read (any of the four kinds, either form)"),
+    target: Path = typer.Argument(..., help="file to write (atomically; not written when SOURCE has errors)"),
+    to: str = typer.Option(..., "--to", help="transfer (the serial telegrams, CR LF) or listing"),
+    kind: Optional[str] = typer.Option(None, "--kind", help="program, parameters, logic or variables (default: detected)"),
+) -> None:
+    """Convert a CLM file between the transfer form (telegrams with checksums) and the listing form."""
+    from .devices.clm.tool import convert_command
+
+    raise typer.Exit(convert_command(source, target, to, kind, lambda s: out.print(s, markup=False, highlight=False, soft_wrap=True)))
+
+
+@clm_app.command("checksum")
+def clm_checksum(telegram: str = typer.Argument(..., help="telegram from its control character, e.g. '# N0101 AEA Q1.00.3 1 $C0' (_ for blanks allowed)")) -> None:
+    """Print the CLM checksum of a telegram; with $hh given, say whether it is right (exit 1 if wrong)."""
+    from .devices.clm.tool import checksum_command
+
+    raise typer.Exit(checksum_command(telegram, lambda s: out.print(s, markup=False, highlight=False, soft_wrap=True)))
+
+
 @app.command()
 def schema(out_file: Optional[Path] = typer.Option(None, "--out", help="write to this file instead of printing")) -> None:
     """Print the machine-file reference (every key: type, default, allowed range, meaning)."""

@@ -137,8 +137,8 @@ _TABLE: tuple[Command, ...] = (
     Command("AEA", "Bit Set/Clear", (BitField(write=True), state()), "L1433-1440", template="AEA_Q1.01.1_1_"),
     Command(
         "AEO",
-        "Acceleration Override",
-        (axis(), flag("mode", {"0": "off", "1": "on"}), flag("source", {"1": "master encoder 1"}), velocity("scaling factor"), Number("minimum acceleration", 3)),
+        "Acceleration Override",  # x, y not described (L1443-1445 lost): on/off and source, decision C-LOST
+        (axis(), flag("mode", {"0": "off", "1": "on"}), flag("source", {"1": "master encoder 1"}), velocity("scaling factor"), velocity("minimum acceleration")),
         "L1442-1468",
         fc_forbidden=True,
         template="AEO_1____1_1_500____100_",
@@ -163,7 +163,7 @@ _TABLE: tuple[Command, ...] = (
     ),
     Command("BIO", "Branch Conditional on Byte Compare", (target(), ByteField("byte 1"), ByteField("byte 2"), Mask()), "L1626-1653", template="BIO_0234_M2.03_Q0.00_01201201_"),
     Command("BPA", "Branch Conditional on Byte", (target(), ByteField(), Mask()), "L1655-1667", template="BPA_0234_M2.02______01201201_"),
-    Command("CID", "Change Variable Value", (VarField(write=True), flag("operation", {"0": "set", "1": "add"}), Number("value", 5, 3, signed=True)), "L1669-1673", template="CID_V600_1_____+12345.678_"),
+    Command("CID", "Change Variable Value", (VarField(write=True), flag("operation", {"0": "assign", "1": "add", "2": "subtract"}), Number("value", 5, 3, signed=True)), "L1669-1673", template="CID_V600_1_____+12345.678_"),
     Command("CIO", "Copy Bit Field", (BitField("source bit"), BitField("destination bit", write=True), Number("number of bits", 2, low=1, high=32, code="3D")), "L1675-1700", template="CIO_M2.02.3_Q1.01.1_08_"),
     Command("CLC", "Clear Counter", (target("counter instruction"),), "L1702-1711", template="CLC_0234_"),
     Command("CON", "Continuous Operation", (axis(), state("on/off"), Number("velocity", 3, signed=True)), "L1713-1725", fc_forbidden=True, template="CON_1____1____+234_"),
@@ -210,7 +210,8 @@ _TABLE: tuple[Command, ...] = (
         "L1951-1979",
         fc_forbidden=True,
     ),
-    Command("FUN", "Functions", tuple(flag(f"channel {n}", {"0": "buffer, clear, restart", "1": "clear, restart", "2": "no change"}) for n in ("axis 1", "axis 2", "axis 3", "axis 4", "ME1", "ME2", "material")), "L1981-1995"),
+    # FUN: one digit per measuring channel in the order the manual lists them (L1989-1993)
+    Command("FUN", "Functions", tuple(flag(f"{n}", {"0": "buffer, clear, restart", "1": "clear, restart", "2": "no change"}) for n in ("master encoder 1", "master encoder 2", "axis 1", "axis 2", "axis 3", "axis 4", "material")), "L1981-1995"),
     Command("HOM", "Home Axis", (axis(),), "L1997-2026", fc_forbidden=True),
     Command("JMP", "Jump Unconditional", (target(),), "L2028-2043"),
     Command("JSR", "Jump to Subroutine", (target(),), "L2045-2062"),
@@ -234,7 +235,7 @@ _TABLE: tuple[Command, ...] = (
     Command("POI", "Positioning, Incremental", (axis(), length(), velocity()), "L2280-2298"),
     Command("PSA", "Positioning, Absolute with In-Position", (axis(), length("position"), velocity()), "L2300-2322", waits=True, fc_forbidden=True),
     Command("PSI", "Positioning, Incremental with In-Position", (axis(), length(), velocity()), "L2324-2340", waits=True),
-    Command("REP", "Registration Position Limit", (target("search limit instruction"), axis(variable=False), unsigned_length("search distance")), "L2342-2365", fc_forbidden=True),
+    Command("REP", "Registration Position Limit", (target("search limit instruction"), axis(), unsigned_length("search distance")), "L2342-2365", fc_forbidden=True),
     Command("RMI", "Registration Mark Interrupt", (Axis(axes=(1,), variable=False), flag("mode", {"0": "wait for raster, offset", "1": "resume main feed"}), BitField("raster input")), "L2367-2433", waits=True, fc_forbidden=True),
     Command(
         "RSV",
@@ -247,7 +248,7 @@ _TABLE: tuple[Command, ...] = (
     Command("RTS", "Return from Subroutine", (), "L2488-2500"),
     Command("SAC", "Set Absolute Position Counter", (axis(), Choice("mode", {"0": "offset", "1": "set", "9": "cancel reference"}, code="1B"), length("position")), "L2502-2584", fc_forbidden=True),
     Command("SET", "Set Variable Value", (VarField("variable", write=True, homing_exempt=True), Literal("="), Number("value", 8, 6, signed=True)), "L2586-2596"),
-    Command("SRM", "Search for Registration Mark", (axis(variable=False), length("offset"), Number("search velocity", 3, signed=True, variable=False), BitField("reference input")), "L2598-2647", waits=True, fc_forbidden=True),
+    Command("SRM", "Search for Registration Mark", (axis(), length("offset"), Number("search velocity", 3, signed=True), BitField("reference input")), "L2598-2647", waits=True, fc_forbidden=True),
     Command(
         "SRP",
         "Print Mark Registration",
@@ -259,7 +260,7 @@ _TABLE: tuple[Command, ...] = (
     Command(
         "VCC",
         "Velocity Change",
-        (axis(variable=False), length("switching position"), velocity(), flag("mode", {"0": "after the distance", "1": "at the position"}), flag("reference", {"0": "", "1": ""})),
+        (axis(), length("switching position"), velocity(), flag("mode", {"0": "after the distance", "1": "at the position"}), flag("reference", {"0": "", "1": ""})),
         "L2808-2859",
         waits=True,
         fc_forbidden=True,
