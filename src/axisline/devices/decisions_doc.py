@@ -19,6 +19,7 @@ _DEVICES = (
     ("FS701 flying shear / saw (issue 4)", "fs701"),
     ("COMPAX cam controller (issue 5)", "compax"),
     ("WAGO 750-672 stepper module (issue 6)", "wago672"),
+    ("Rexroth CLM1.4 (issue 11)", "clm"),
 )
 
 

@@ -82,3 +82,17 @@ def test_bac_examples_are_clean_programs():
     for name in ("bac_example_a", "bac_example_b", "cou_example"):
         program, findings = read_program_text(_listing(name))
         assert findings == [] and check_program(program) == [], name
+
+
+def test_rep_directly_after_srm_for_the_same_axis_is_allowed_for_another_axis_1a():
+    """L2361-2365 place REP right after SRM (decision C-REP); error 1A when the axes differ (L8484-8486)."""
+    program, _ = read_program_text(_listing("rep_example_2") + "\n0032 JMP 0030\n")
+    assert [f.code for f in check_program(program) if f.is_error] == []
+    program, _ = read_program_text("0030 SRM 1 +000000.000 +050 I1.01.0\n0031 REP 0900 2 000500.000\n0032 JMP 0030\n")
+    assert [f.code for f in check_program(program) if f.is_error] == ["1A"]
+
+
+def test_raster_input_of_the_other_axis_is_1d():
+    """Raster 1 (I0.01.7) serves axis 1, Raster 2 (I0.01.4) axis 2 (L2625)."""
+    program, _ = read_program_text("0000 SRM 2 +000000.000 +500 I0.01.7\n0001 SRM 2 +000000.000 +500 I0.01.4\n0002 JMP 0000\n")
+    assert [(f.where, f.code) for f in check_program(program) if f.is_error] == [("N0000", "1D")]

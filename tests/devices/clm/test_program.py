@@ -246,3 +246,34 @@ def test_fuzz_program_telegrams_raise_only_clm_errors(line):
         parse_program_telegram(line)
     except ClmError as e:
         assert e.code
+
+
+@pytest.mark.parametrize(
+    ("line", "values"),
+    [  # the commands whose syntax the manual lost: decision C-LOST in docs/decisions.md
+        ("0010 FOL 2 1 2 1.500000", (2, "1", "2", 1500000)),
+        ("0010 FUN 0 2 2 2 2 2 1", ("0", "2", "2", "2", "2", "2", "1")),
+        ("0010 LMK 1 001000.000 000050.000", (1, 1000000, 50000)),
+        ("0010 LMR 1 000900.000 000400.000", (1, 900000, 400000)),  # L2148-2160, example 1
+        ("0010 MLO Q1.00.5 1 005000.000", (None, "1", 5000000)),
+        ("0010 MLT M2.00.3 002500.000", (None, 2500000)),
+        ("0010 AEO 1 1 1 500 100", (1, "1", "1", 500, 100)),
+        ("0010 CID V600 1 +12345.678", (Var(600), "1", 12345678)),
+        ("0010 CVT V600 M2.00 0 1", (Var(600), None, "0", "1")),  # L1901: markers -> V600
+        ("0010 RSV 1 0000 10000", ("1", 0, "10000")),  # L2448
+        ("0010 CST 1 0", ("1", 0)),
+    ],
+)
+def test_lost_syntax_commands_read_and_round_trip(line, values):
+    ins = parse_listing_line(line)
+    got = tuple(None if hasattr(v, "area") else v for v in ins.values)
+    assert got == values
+    assert parse_program_telegram(ins.telegram()) == ins
+
+
+@pytest.mark.parametrize("line", ["0000 BIC 0500 11 M2.02.4 0 0", "0000 BIC 0500 11 M2.02.4 9 0", "0000 VEO 1 V600 1 500 1", "0000 JTK 0100 3"])
+def test_selector_fields_refuse_values_outside_the_manual(line):
+    """BIC counts 1-8 (L1580, decision C-BIC), mode digits take no variable, JTK tasks 1, 2, 4, 5."""
+    with pytest.raises(ClmError) as e:
+        parse_listing_line(line)
+    assert e.value.code == "0A"

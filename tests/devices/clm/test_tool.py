@@ -107,3 +107,31 @@ def test_convert_refuses_a_file_with_errors_and_keeps_the_old_target(tmp_path):
 def test_checksum_command(telegram, out, code):
     r = clm("checksum", telegram)
     assert r.exit_code == code and out in r.output
+
+
+def test_broken_logic_task_names_the_lt_instruction_and_38(tmp_path):
+    prg = EXAMPLES / "roll_feed.prg"
+    lt = tmp_path / "bad.lt"
+    lt.write_text("0000 LD I1.00.0\n0001 AND( I1.00.2\n0002 ST M5.00.0\n0003 END\n")  # '(' never closed
+    r = clm("check", prg, "--logic", lt)
+    assert r.exit_code == 2
+    assert "LT0001 38 Logic Prg. Error" in r.output
+    lt.write_text("0000 LD I1.00.0\n0001 ST M2.00.0\n0002 END\n")  # M2 is the NC's
+    r = clm("check", prg, "--logic", lt)
+    assert r.exit_code == 2 and "LT0001 38" in r.output and "bad.lt:2" in r.output
+
+
+def test_broken_variables_file(tmp_path):
+    var = tmp_path / "bad.var"
+    var.write_text("V600 +250.000\nV100 +1\nV601 12a\n")
+    r = clm("check", EXAMPLES / "roll_feed.prg", "--variables", var)
+    assert r.exit_code == 2
+    assert "V100 X01:23 Wrong Variable #" in r.output and "X01:18" in r.output
+
+
+def test_variable_that_does_not_fit_its_field_is_a_32_warning(tmp_path):
+    var = tmp_path / "big.var"
+    var.write_text("V600 +1234567.0\nV601 +999\nV602 +20\n")  # a feed length beyond 6.3 digits
+    r = clm("check", EXAMPLES / "roll_feed.prg", "--variables", var)
+    assert r.exit_code == 1
+    assert "N0003 32 Variable Value" in r.output and "too large" in r.output

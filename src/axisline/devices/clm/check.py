@@ -21,6 +21,15 @@ instruction, which a maintainer wants to know before the machine stops on them):
 * with the Logic Task: its compiler's findings (38 with the LT number).
 
 Exit status of the command: 0 clean, 1 warnings only, 2 errors.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-CHECK: a finding is an error when the CLM would refuse the file or stop with a fault
+   whenever it reaches the place (35, 1A, 31, 1D, a flying-cutoff rule, an axis B000 does not
+   enable), and a warning when it depends on the run (a jump into unwritten NOPs, running off
+   the end into 3000, CLC of a non-counter, a variable's stored value that does not fit, SET of
+   a homing variable). Tests: ``tests/devices/clm/test_tool.py::test_warnings_only_exit_1``,
+   ``tests/devices/clm/test_manual_programs.py``.
 """
 
 from __future__ import annotations
@@ -91,6 +100,8 @@ def _instruction(ins: Instruction, program: Program, numbers: set[int], variable
         out.append(Finding(w, "0A", f"CLC {ins.values[0]:04d}: no COU or BAC there, the CLC is skipped (L1702-1711)", "warning"))
     if m == "BIC":
         out += _bic(ins)
+    if m == "SRM":
+        out += _raster(ins)
     if m == "CVT" and ins.values[3] == "1" and isinstance(ins.values[0], Var) and ins.values[0].number < 600:
         out.append(Finding(w, "31", f"Write Sys.-Var.: CVT markers -> V{ins.values[0].number:03d}, a system variable (V600-V999 only)"))
     if m == "SET" and isinstance(ins.values[0], Var) and ins.values[0].number < 600:
@@ -118,6 +129,18 @@ def _bic(ins: Instruction) -> list[Finding]:
     top = int(offset) + largest * int(interval)  # type: ignore[call-overload]
     if top > 2999:
         return [Finding(_w(ins.number), "0E", f"Invalid Block #: BIC can jump to {offset} + {largest} x {interval} = {top}, beyond 2999 (L1576-1624)", "warning")]
+    return []
+
+
+# the fast raster inputs belong to one axis each: Raster 1 to axis 1, Raster 2 to axis 2 (L2625)
+_RASTER_AXIS = {"I0.01.7": 1, "I0.01.4": 2}
+
+
+def _raster(ins: Instruction) -> list[Finding]:
+    axis, bit = ins.values[0], str(ins.values[3])
+    owner = _RASTER_AXIS.get(bit)
+    if owner is not None and isinstance(axis, int) and axis != owner:
+        return [Finding(_w(ins.number), "1D", f"Command I/O: SRM on axis {axis} with {bit}, the raster input of axis {owner} (L2625)")]
     return []
 
 
@@ -169,6 +192,10 @@ def check_files(program: Path, params: Path | None = None, logic: Path | None = 
     if logic is not None:
         lt = read_file(logic, "logic")
         findings += lt.findings
+        if isinstance(lt.data, dict) and lt.ok:  # the compiler's own checks: END, parentheses
+            from .logic import check_logic
+
+            findings += [f for f in check_logic(lt.data) if f not in lt.findings]
     if isinstance(loaded.data, Program):
         findings += check_program(loaded.data, variables=values, enabled_axes=enabled, cutoff_axis1=cutoff)
     return findings

@@ -14,6 +14,42 @@ the rest along by keeping one blank after it. For the commands whose serial form
 printed, the columns follow the one checksum-verified long instruction, POI in the sum table
 of Fig. 9-12 (``POI_1____+123456.789_123_``): the axis field is four wide (the width of its
 ``Vnnn``), every other field as wide as its constant, one blank between fields.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-COLUMNS, spec §8.4 [INFERRED] padding / errata §1.8 "column-aligned": a field starts at
+   its column in the Fig. 9-13 constant form (BPA with six blanks: only then does its printed
+   ``$32`` verify), a longer value (``Vnnn`` in a 3-digit column) keeps one blank after it;
+   commands without a printed form use the POI sum table's layout (axis four wide, the rest at
+   their width, one blank apart); the data is framed ``bbbb ccc <data> `` so that NOP's empty
+   data gives the two blanks of ``#5N0123_NOP__$45``. Tests:
+   ``test_fig_9_13_constant_forms_are_the_columns_axisline_writes``,
+   ``test_checksum_verified_program_telegrams_are_reproduced_byte_for_byte``,
+   ``test_nop_telegram_has_two_blanks_after_the_command``.
+2. C-LOST, the commands whose syntax diagram is lost (errata §2; spec FOL, FUN, LMK, LMR,
+   MLO, MLT, AEO, CID, CVT [MISSING]): FOL ``a on/off mode factor`` (mode 1 without, 2 with
+   ramp, factor 1.6 as FAK, L1951-1979); FUN seven digits 0/1/2 in the order the manual lists
+   the channels: master encoder 1, master encoder 2, axes 1-4, material (L1989-1993); LMK ``1
+   length offset`` (LML plus the offset distance set on a raster, L2103-2117); LMR ``1
+   raster-distance offset-distance`` (the two values its surviving examples compute,
+   L2148-2171); MLO ``bit state length`` and MLT ``bit length`` (L2184-2203, the bit written);
+   AEO ``a x y scale minimum``: x on/off, y the source (1 = master encoder 1, the only one
+   described), the minimum acceleration in per mille of Ax09 like ACC (three digits: the
+   printed ``500____100`` is exact with it); CID ``V d value``: d 0 assign, 1 add, 2 subtract;
+   CVT f 0 BCD / 1 binary, d 0 variable -> markers / 1 markers -> variable (the two examples
+   L1860, L1901); RSV's five restore flags as one 5-digit block as every example prints them
+   (L2448-2462). Test: ``test_lost_syntax_commands_read_and_round_trip``.
+3. C-VARIABLES, which fields take ``Vnnn`` (§5.2 "If both example lines contain a variable or a
+   constant in the same location, only this type of value is allowed"): every axis,
+   instruction, per-mille, length, state, count, time and tolerance field (the printed pairs
+   show variables there, RTM's mode too, L2470); operands, masks, operators, selector digits
+   and the COU/BAC offsets are constants. Tests: ``test_fig_9_13_variable_forms_read``,
+   ``test_selector_fields_refuse_values_outside_the_manual``.
+4. C-BIC, Fig. 9-13 prints ``BIC_0234_56_____M0.12.3_0_1_`` with a bit count of 0, outside the
+   1-8 of the text (L1580-1584): the text wins, 0 is refused. Test:
+   ``test_selector_fields_refuse_values_outside_the_manual``.
+5. C-MAT, MAT's constant is printed 6.6 (``+123456.987654``, L2177), SET's 8.6: both take the
+   variable format 8.6 (a MAT result is a variable); shorter constants are read.
 """
 
 from __future__ import annotations

@@ -12,6 +12,16 @@ Every line is read; every bad line is a `Finding` (where, CLM code, text, file:l
 maintainer sees the whole list at once. A file with an error is never taken half: the
 caller gets the findings and keeps nothing (`LoadedFile.ok`). Files are written with the
 kernel's atomic write (a reader sees the old file or the new one).
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-UNDERSCORE, spec §0: the manual writes ``_`` for a blank in telegrams, but ``_`` is also
+   a legal TXT character: in a file, a telegram line is read in the manual's notation only
+   when it has no blank at all (a real telegram always has one). Test:
+   ``tests/devices/clm/test_tool.py::test_broken_transfer_file_reports_status_01_errors``.
+2. C-ENCODING: files are read as UTF-8, else Latin-1 (old PC tools write their code page, and
+   only comments may carry it); a file over 4 MB is refused before it is read (3000
+   instructions are ~150 kB). Test: ``test_unreadable_or_binary_input_is_a_finding_not_a_traceback``.
 """
 
 from __future__ import annotations

@@ -32,6 +32,14 @@ means "not programmed".
 An operand outside its range is error 1D "Command I/O" in an NC instruction, 38 in the Logic
 Task and fault 02 in a parameter; each caller picks its code, this module only says whether
 the operand exists and who may read or write it.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-OPERANDS, spec §3.3 gives the Logic Task's rights but not the NC tasks': the NC tasks
+   read I0-I2, Q0-Q2, M0-M5 and write Q1, Q2.02-Q2.05, M2, M3, M4 (M4 "NC read/write", M5 "LT
+   read/write, NC read-only", M6 the Logic Task's own; the system outputs Q0 and the status
+   word Q2.00-01 are driven by the CLM's functions). A write elsewhere is 1D. Tests:
+   ``tests/devices/clm/test_program.py::test_each_kind_of_bad_instruction_has_its_clm_code``.
 """
 
 from __future__ import annotations
@@ -77,7 +85,7 @@ LT_READ = frozenset(_INPUTS_OUTPUTS | {("M", 0), ("M", 1), ("M", 4), ("M", 5), (
 LT_WRITE = frozenset({("Q", 1), ("Q", 2), ("M", 5), ("M", 6)})
 _FIRST_WRITABLE_BYTE = {("Q", 2): 2}  # Q2.00-Q2.01 are the Profibus status word
 
-_PATTERN = re.compile(r"([IQM]?)(\d)\.(\d\d)(?:\.(\d))?\Z")
+_PATTERN = re.compile(r"([IQM]?)(\d{1,2})\.(\d\d)(?:\.(\d))?\Z")  # two source digits: the "00" of 00.00.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -118,6 +126,8 @@ def parse_operand(text: str, *, bit: bool, code: str = "1D", unset_ok: bool = Fa
     if m is None or (m.group(4) is None) == bit:
         raise ClmError(code, f"{text.strip()[:20]!r} is not a {what}")
     area, source, byte = m.group(1), int(m.group(2)), int(m.group(3))
+    if area and len(m.group(2)) > 1:
+        raise ClmError(code, f"{text.strip()[:20]!r} is not a {what}")
     b = int(m.group(4)) if m.group(4) is not None else None
     if area == "":
         if unset_ok and source == 0 and byte == 0 and (b is None or b == 0):

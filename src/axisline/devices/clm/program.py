@@ -23,6 +23,29 @@ The program memory holds 3000 instructions 0000-2999; an instruction never writt
 instruction applies its actual-quantity offset once and stores it back as ``+00000``
 (L1753-1770: "significant only if the COU command has been read in (even when storing
 occurs via the RS interface)"; a ``0`` in the sign place zeroes the count).
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-LOAD, errata §2 / chapter 11: the CLM stores an instruction of the right shape and
+   faults (16, 1D, 1B, 1F, 3D, 31) only when a task reaches it; axisline refuses such a line
+   when the file is loaded, with that fault code and the line, because the issue asks that a
+   file with a bad line is reported whole and nothing of it kept, and a maintainer wants to
+   know before the machine stops. A telegram the CLM could not store at all is answered with
+   its Status 01 error (01, 02, 03, 04, 12, 13). Tests: ``test_each_kind_of_bad_instruction_has_its_clm_code``,
+   ``test_telegram_refusals_are_the_status_01_errors``.
+2. C-LISTING, the listing form (no file format is printed; the manual prints listings): a
+   comment follows the fields after a tab, ``-`` or ``;`` (the manual's own tables separate
+   comments by a tab, with or without ``-``); numbers with fewer digits than the field are
+   read (the manual prints ``+00010.005`` and ``WAI 00.02``) and written in full width; TXT's
+   text is written in double quotes (its blanks matter) and read with or without them.
+   Tests: ``test_listing_with_tabs_and_comments``, ``test_manual_listing_line``.
+3. C-COUNTER, L1753-1770 do not say what a negative offset larger than the count gives: the
+   count stops at 0 (a count of parts is never negative). Test:
+   ``test_counter_offset_applies_once_on_load_and_is_stored_back_as_zero``.
+4. C-REP, L2350 says REP "must not be executed immediately after the SRM command", but the
+   manual's permitted combination (L2361-2365) and error 1A (L8484-8486) put it right there:
+   REP after SRM is read, and 1A is reported when its axis differs from the SRM's. Test:
+   ``test_rep_directly_after_srm_for_the_same_axis_is_allowed_for_another_axis_1a``.
 """
 
 from __future__ import annotations

@@ -17,6 +17,13 @@ digits. The manual's two worked sums (``$C4``, ``$45``) are tests.
 Parsing is tolerant where the manual's printed examples are (CR LF or CR or LF or nothing at
 the end, `$hh` in either case); emitting is exact. A telegram that cannot be framed is refused
 with Status 01 error 02 "RS Format Error", a wrong checksum with 04 "RS Checksum Error".
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-CHECKSUM-OPTIONAL, L6370 "the checksum can be disregarded" when validation is off: a
+   telegram without ``$hh`` is read unless the caller requires one (B003 validation on, and
+   always for ``!`` commands, errata §1.13); a ``$hh`` that is present is always verified.
+   Tests: ``test_lower_case_checksum_and_missing_checksum``.
 """
 
 from __future__ import annotations
