@@ -96,3 +96,23 @@ def test_fuzz_parse_raises_only_clm_errors_with_a_code(line):
 def test_emit_then_parse_verifies(body, station):
     line = emit("#", station, "N", body)
     assert parse_telegram(line, require_checksum=True).body == body
+
+
+def _manual_telegrams():
+    from .manual_examples import TELEGRAMS
+
+    return [pytest.param(t, id=t["name"]) for t in TELEGRAMS]
+
+
+@pytest.mark.parametrize("t", _manual_telegrams())
+def test_every_checksummed_telegram_of_the_manual(t):
+    """manual_examples.TELEGRAMS (lines in each entry): the printed form verifies or is refused
+    with X01:04, and the corrected form (sum table / errata §1.8) verifies."""
+    printed = f"{t['text']}${t['checksum']}"
+    if t["verifies"]:
+        assert parse_telegram(printed).checksum == t["checksum"]
+    else:
+        with pytest.raises(ClmError) as e:
+            parse_telegram(printed)
+        assert e.value.code == "X01:04"
+        assert parse_telegram(f"{t['corrected']}${t['checksum']}").checksum == t["checksum"]
