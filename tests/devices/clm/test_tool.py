@@ -135,3 +135,21 @@ def test_variable_that_does_not_fit_its_field_is_a_32_warning(tmp_path):
     r = clm("check", EXAMPLES / "roll_feed.prg", "--variables", var)
     assert r.exit_code == 1
     assert "N0003 32 Variable Value" in r.output and "too large" in r.output
+
+
+def test_parameters_decide_axes_and_cutoff_rules(tmp_path):
+    prg = tmp_path / "p.prg"
+    prg.write_text("0000 POI 2 +000010.000 999\n0001 LML 1 001000.000\n0002 EOS\n0003 JMP 0000\n")
+    r = clm("check", prg, "--params", EXAMPLES / "roll_feed.par")
+    assert r.exit_code == 2
+    assert "N0000 7E A2 not enabled" in r.output  # B000 enables axis 1 only (axis fault base 0x70)
+    assert "N0001 0A" in r.output and "flying cutoff" in r.output  # A100 mode is not 5
+
+
+def test_broken_parameter_file_names_the_parameter(tmp_path):
+    par = tmp_path / "bad.par"
+    par.write_text((EXAMPLES / "roll_feed.par").read_text().replace("A106 000100.000", "A106 0001x0.000"))
+    r = clm("check", EXAMPLES / "roll_feed.prg", "--params", par)
+    assert r.exit_code == 2
+    assert "A106 02" in r.output and "bad.par:" in r.output
+    assert r.output.count("A106 02") == 1  # reported once

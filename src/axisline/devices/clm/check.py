@@ -186,8 +186,7 @@ def check_files(program: Path, params: Path | None = None, logic: Path | None = 
     if params is not None:
         p = read_file(params, "parameters")
         findings += p.findings
-        if p.data is not None:
-            findings += p.data.check()  # type: ignore[attr-defined]
+        if p.data is not None:  # read_parameter_text has run the leaving-Parameter-mode checks
             enabled, cutoff = _machine(p)
     if logic is not None:
         lt = read_file(logic, "logic")
