@@ -153,3 +153,16 @@ def test_broken_parameter_file_names_the_parameter(tmp_path):
     assert r.exit_code == 2
     assert "A106 02" in r.output and "bad.par:" in r.output
     assert r.output.count("A106 02") == 1  # reported once
+
+
+@pytest.mark.parametrize(("name", "kind"), [("roll_feed.par", "parameters"), ("roll_feed.lt", "logic"), ("roll_feed.var", "variables")])
+def test_convert_every_kind_round_trips(tmp_path, name, kind):
+    from axisline.devices.clm.files import read_file
+
+    transfer, back = tmp_path / "t.txt", tmp_path / name
+    assert clm("convert", EXAMPLES / name, transfer, "--to", "transfer").exit_code == 0
+    assert all(line.endswith(b"\r\n") and b"$" in line for line in transfer.read_bytes().splitlines(keepends=True))
+    assert clm("convert", transfer, back, "--to", "listing").exit_code == 0
+    original, again = read_file(EXAMPLES / name), read_file(back)
+    assert (original.kind, again.kind) == (kind, kind)
+    assert original.ok and again.ok and original.data == again.data
