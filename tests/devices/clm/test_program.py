@@ -171,6 +171,9 @@ def test_set_may_write_the_homing_variables():
         ("# N0101 AEA Q1.00.3 1 $C1", "X01:04"),
         ("# K0101 AEA Q1.00.3 1 ", "X01:02"),
         ("# N0101 POI 9 +000001.000 999 ", "16"),
+        ("# N0101 POI 1 +000001.000 1000 ", "X01:03"),  # four digits in a 3-digit field: shape
+        ("# N0101 JMP 3000 ", "X01:16"),  # right shape, beyond 2999: "Value too large"
+        ("# N0101 CIO M2.02.3 Q1.01.1 33 ", "3D"),  # the CLM's own fault for this one
     ],
 )
 def test_telegram_refusals_are_the_status_01_errors(telegram, code):

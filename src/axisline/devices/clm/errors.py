@@ -143,6 +143,7 @@ class ClmError(ValueError):
         self.code = code
         self.detail = detail
         self.where = where
+        self.out_of_range = False  # a well-formed number outside its field's range
         super().__init__(self.message)
 
     @property

@@ -144,7 +144,9 @@ class Number(Field):
         frac = (m.group(3) or "") if self.decimals else ""
         raw = sign * (int(m.group(2)) * 10**self.decimals + (int(frac.ljust(self.decimals, "0")) if frac else 0))
         if not self.low <= raw <= self.high:
-            raise self.refuse(token, self.describe())
+            error = self.refuse(token, self.describe())
+            error.out_of_range = True  # right shape, wrong size: over the interface "Value too large"
+            raise error
         return raw
 
     def format(self, value: object) -> str:

@@ -15,8 +15,9 @@ the fields is a comment while MAT's ``V601 - V602`` is an operator. Every refusa
 CLM's code: in a listing the fault the CLM raises for it (0A invalid command or data, 0E
 block number, 16 axis, 1D operand, 3D bit count, 1B SAC mode, 1F SRP variable field, 31
 system variable); in a telegram the Status 01 error the CLM answers with (01 block number not
-decimal, 02 format, 03 block data, 04 checksum, 12 block number too large, 13 invalid command)
-and, for a value of the right shape the CLM would stop on when it reaches it, that fault.
+decimal, 02 format, 03 block data, 04 checksum, 12 block number too large, 13 invalid command,
+16 value too large) and, for a value of the right shape the CLM would stop on when it
+reaches it, that fault.
 
 The program memory holds 3000 instructions 0000-2999; an instruction never written is NOP
 (§5.2). Counters (COU, BAC) are kept per instruction number beside it; storing a counter
@@ -31,7 +32,8 @@ Decisions (spec line -> choice, why)
    when the file is loaded, with that fault code and the line, because the issue asks that a
    file with a bad line is reported whole and nothing of it kept, and a maintainer wants to
    know before the machine stops. A telegram the CLM could not store at all is answered with
-   its Status 01 error (01, 02, 03, 04, 12, 13). Tests: ``test_each_kind_of_bad_instruction_has_its_clm_code``,
+   its Status 01 error (01, 02, 03, 04, 12, 13; 16 "Value too large" for a number of the
+   right shape beyond its range; L6820 gives no description). Tests: ``test_each_kind_of_bad_instruction_has_its_clm_code``,
    ``test_telegram_refusals_are_the_status_01_errors``.
 2. C-LISTING, the listing form (no file format is printed; the manual prints listings): a
    comment follows the fields after a tab, ``-`` or ``;`` (the manual's own tables separate
@@ -226,7 +228,8 @@ def parse_program_telegram(line: str, *, require_checksum: bool = False) -> Inst
         if e.code == "0A" and m.group(1).upper() not in COMMANDS:
             raise ClmError(serial_code(13), e.detail, where) from None
         if e.code in _SHAPE_FAULTS:
-            raise ClmError(serial_code(_SHAPE_FAULTS[e.code]), e.detail, where) from None
+            number = 16 if e.out_of_range else _SHAPE_FAULTS[e.code]  # 16 "Value too large"
+            raise ClmError(serial_code(number), e.detail, where) from None
         raise e.at(where) from None
 
 
