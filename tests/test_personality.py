@@ -43,6 +43,9 @@ class Echo(base.Personality):
                 # the cycle the request was answered in: proves it ran at a cycle boundary
                 return dev.config.prefix.encode() + data.upper() + f"@{dev.machine.clock.cycle}".encode()
 
+            def session(self):
+                return self  # no parser state to keep apart
+
         return Endpoint()
 
     def summary(self):

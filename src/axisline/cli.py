@@ -7,10 +7,11 @@ step failed); 2 a bad machine file (the message names the key, value and range).
 from __future__ import annotations
 
 import json
+import os
 import signal
 import sys
 from pathlib import Path
-from typing import Optional
+from typing import Annotated, Optional
 
 import typer
 from rich.console import Console
@@ -38,6 +39,40 @@ def _load(machine: Path, **kw):
         return Machine.from_file(machine, **kw)
     except ConfigError as e:
         raise _bad_file(e) from None
+
+
+def _machine_value(value, option: str, key: str):
+    """A command-line value that stands in for the machine file's machine.<key>: it gets the
+    key's own type and range (one rule for both), or exit 2 naming the option."""
+    if value is None:
+        return None
+    from pydantic import TypeAdapter, ValidationError
+    from rich.markup import escape
+
+    from .config import MachineSection
+    from .configerrors import allowed_range, shown
+
+    info = MachineSection.model_fields[key]
+    try:
+        return TypeAdapter(Annotated[info.annotation, *info.metadata]).validate_python(value)
+    except ValidationError as e:
+        why = e.errors(include_url=False)[0]["msg"]
+        console.print(f"[red]{option}[/red] = {escape(shown(value))}: {escape(why)} (allowed: {allowed_range(info)}, as machine.{key})")
+        raise typer.Exit(2) from None
+
+
+def _writable(outputs: dict[str, Path | None]) -> None:
+    """Exit 2 for an output that cannot be written, before the run (not after it, with a traceback)."""
+    from rich.markup import escape
+
+    from .kernel.atomic import unwritable_reason
+
+    for option, path in outputs.items():
+        reason = unwritable_reason(path) if path is not None else None
+        if reason is not None:
+            shown_path = path.parent if option in ("--plot", "--report") else path
+            console.print(f"[red]{option}[/red] = {escape(str(shown_path))}: cannot be written ({escape(reason)})")
+            raise typer.Exit(2)
 
 
 def _endpoint(value: str | None, option: str) -> tuple[str, int] | None:
@@ -68,9 +103,10 @@ def run(
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
 ) -> None:
     """Run the machine on the embedded simulated plant (as fast as possible, exact time)."""
-    if duration is not None and not duration > 0:
-        console.print(f"[red]--duration[/red] = {duration}: must be > 0")
-        raise typer.Exit(2)
+    duration = _machine_value(duration, "--duration", "duration")
+    seed = _machine_value(seed, "--seed", "seed")
+    _writable({"--json": json_out, "--trace": trace_out, "--plot": plot_dir and plot_dir / "axis.png",
+               "--report": report_dir and report_dir / "report.md"})
     m = _load(machine, seed=seed, duration=duration)
     if quiet or not sys.stderr.isatty():
         result = m.run(duration)
@@ -319,12 +355,14 @@ def serve(
 
     Endpoints bind to 127.0.0.1 unless a host is given. Writes from the network are refused
     unless --allow-writes is given. Ctrl-C or SIGTERM stops the axes with their stop ramps,
-    saves what must persist and exits 0.
+    saves what must persist and exits 0; another Ctrl-C or SIGTERM meanwhile does not cut
+    the ramps short (kill -9 is the hard stop).
     """
     from .config import load_machine_file
     from .kernel import WallClock
     from .machine import Machine
 
+    duration = _machine_value(duration, "--duration", "duration")
     try:
         cfg = load_machine_file(machine)
         m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(machine))
@@ -341,9 +379,20 @@ def serve(
             raise typer.Exit(2)
     if m.device is not None:
         m.device.network_writes = allow_writes
+        _remove_stale_temporaries(m.device.store_paths())
     servers = _start_servers(m, wanted, serial_pty)
 
+    stopping = False
+
     def _stop(signum, frame):  # runs between cycles: the scheduler checks the flag
+        nonlocal stopping
+        if stopping:
+            # scheduler.stop() now would end stop_all()'s ramps at once: axes left moving,
+            # nothing saved. os.write: the handler may interrupt a console print.
+            os.write(2, b"already stopping: the axes finish their stop ramps and what must persist is saved "
+                        b"(kill -9 stops at once, without either)\n")
+            return
+        stopping = True
         m.scheduler.stop()
 
     signal.signal(signal.SIGINT, _stop)
@@ -354,14 +403,31 @@ def serve(
     try:
         n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
     finally:
+        stopping = True  # from here on a signal only says so (see _stop)
         for srv in servers:
             srv.stop()
+    if m.scheduler.stop_requested:  # a signal came as --duration ran out: the stop follows anyway
+        m.scheduler.run(1)  # takes the request back without running a cycle
     rested = m.stop_all()
-    saved = m.persist()
+    try:
+        saved = m.persist()
+    except OSError as e:  # the check refused unwritable paths; this one failed since
+        console.print(f"[red]cannot save[/red] what must persist: {e}", markup=True)
+        print("stopped", flush=True)
+        raise typer.Exit(1) from None
     late = getattr(m.clock, "late_max", 0.0)
     console.print(f"stopped after {n} cycles; axes {'at rest' if rested else 'NOT at rest'}; saved {len(saved)} file(s); worst lateness {late * 1e3:.2f} ms")
     print("stopped", flush=True)
     raise typer.Exit(0 if rested else 1)
+
+
+def _remove_stale_temporaries(paths: list[Path]) -> None:
+    """Remove the temporary files that saves interrupted by a kill left beside the stores."""
+    from .kernel.atomic import remove_stale_temporaries
+
+    for path in paths:
+        for tmp in remove_stale_temporaries(path):
+            console.print(f"removed {tmp} (a save interrupted before its rename; {path} is whole)", markup=False)
 
 
 def _start_servers(m, wanted: dict, serial_pty: bool) -> list:

@@ -13,22 +13,25 @@
     [trace]              the scope: capacity, decimation, channels
 
 An unknown key, a wrong type or an out-of-range value is a ConfigError whose lines
-name the key, the value and the allowed range.
+name the key, the value and the allowed range. The file and the files it names (cam CSVs)
+are read and checked whole when it is loaded, within size limits checked before any work:
+`check` then refuses everything `run` would.
 """
 
 from __future__ import annotations
 
+import re
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from .configerrors import ConfigError, explain
+from .configerrors import ConfigError, explain, read_text, shown
 from .job import JobConfig
 from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
 from .motion.axis import AxisConfig
-from .sync_setup import CamEntry, MasterEntry
+from .sync_setup import CamEntry, MasterEntry, load_cam_csv
 from .plant.config import (
     DigitalIOConfig,
     EncoderConfig,
@@ -40,6 +43,12 @@ from .plant.config import (
 )
 
 Name = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
+
+#: a machine file is a page of settings (the examples are below 10 kB; large tables go in CSV
+#: files): the limit keeps a wrong or hostile file from costing seconds and memory to refuse
+MAX_FILE_BYTES = 1 << 20
+#: parts of one dotted key (a.b.c = 1); tomllib takes time and memory quadratic in this
+MAX_KEY_PARTS = 16
 
 
 class _Strict(BaseModel):
@@ -54,7 +63,7 @@ class MachineSection(_Strict):
     logic_every: int = Field(
         1, ge=1, le=1000, description="the logic task (job, device logic) runs every n-th cycle, e.g. 4 as the CLM's"
     )
-    personality: str = Field("none", description="device personality: none, or a registered device (its [device] table configures it)")
+    personality: str = Field("none", max_length=64, description="device personality: none, or a registered device (its [device] table configures it)")
 
 
 class ServoEntry(ServoDriveConfig):
@@ -102,7 +111,20 @@ class TraceConfig(_Strict):
     )
     decimation: int = Field(1, ge=1, le=10_000, description="record every n-th cycle")
     mode: Literal["linear", "ring"] = Field("linear", description="linear: stop when full; ring: keep the newest")
-    channels: list[str] | Literal["all"] = Field("all", description="axis.signal names, or all")
+    channels: list[Annotated[str, Field(min_length=1, max_length=128)]] | Literal["all"] = Field(
+        "all", max_length=4096, description="axis.signal names, or all"
+    )
+
+    @field_validator("channels")
+    @classmethod
+    def _unique(cls, channels: list[str] | str) -> list[str] | str:
+        if channels != "all":
+            seen: set[str] = set()
+            for c in channels:
+                if c in seen:  # the scope records each signal once (a second column would be a copy)
+                    raise ValueError(f"{c!r} is listed twice")
+                seen.add(c)
+        return channels
 
 
 class MachineConfig(_Strict):
@@ -194,7 +216,7 @@ def device_config(config: MachineConfig, source: str = "<machine>"):
     try:
         cls = base.load(name)
     except ValueError as e:
-        raise ConfigError(source, [f"machine.personality = {name!r}: {e}"]) from None
+        raise ConfigError(source, [f"machine.personality = {shown(name)}: {e}"]) from None
     try:
         return cls.Config.model_validate(config.device)
     except ValidationError as err:
@@ -202,14 +224,62 @@ def device_config(config: MachineConfig, source: str = "<machine>"):
         raise ConfigError(source, [f"device.{p}" for p in inner.problems]) from None
 
 
+# TOML strings and comments: their dots belong to no key. Every alternative matches in one
+# pass, an unterminated string too (to the end of its line or of the text: the file is
+# invalid then, and tomllib says so), so the scan stays linear on any input.
+_TOML_TEXT = re.compile(
+    r'"""(?:[^\\]|\\.)*?(?:"""|\Z)'  # multi-line basic string
+    r"|'''.*?(?:'''|\Z)"  # multi-line literal string
+    r'|"(?:[^"\\\n]|\\.)*+"?'  # basic string
+    r"|'[^'\n]*+'?"  # literal string
+    r"|#[^\n]*+",  # comment
+    re.S,
+)
+# a dotted key (bare or quoted parts; strings are "" by then) of more than MAX_KEY_PARTS parts;
+# possessive, and starting only where a part starts, so that it is linear too
+_LONG_KEY = re.compile(r'(?<![\w"-])(?:[\w-]++|"")(?:[ \t]*+\.[ \t]*+(?:[\w-]++|"")){%d,}' % MAX_KEY_PARTS)
+
+
+def _blank(m: re.Match[str]) -> str:
+    """A string becomes "" and a comment nothing, line breaks kept (line numbers stay the file's)."""
+    text = m.group()
+    return ('""' if text[0] in "\"'" else "") + "\n" * text.count("\n")
+
+
+def _toml_limits(text: str) -> str | None:
+    """What in the text's shape would make tomllib itself slow (None: nothing)."""
+    bare = _TOML_TEXT.sub(_blank, text)
+    long_key = _LONG_KEY.search(bare)
+    if long_key is not None:
+        line = bare.count("\n", 0, long_key.start()) + 1
+        return f"line {line}: a dotted key of more than {MAX_KEY_PARTS} parts (allowed: at most {MAX_KEY_PARTS})"
+    return None
+
+
 def load_machine_file(path: str | Path) -> MachineConfig:
+    """Read, parse and check a machine file and the files it names (cam CSVs)."""
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as e:
-        raise ConfigError(str(p), [f"cannot read the machine file: {e.strerror}"]) from None
+        text = read_text(p, MAX_FILE_BYTES)
+    except ValueError as e:
+        raise ConfigError(str(p), [f"machine file: {e}"]) from None
+    too_big = _toml_limits(text)
+    if too_big is not None:
+        raise ConfigError(str(p), [too_big])
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ConfigError(str(p), [f"TOML syntax: {e}"]) from None
-    return parse_machine(data, str(p))
+    except RecursionError:  # arrays or inline tables nested hundreds deep
+        raise ConfigError(str(p), ["TOML: arrays or inline tables nested too deeply"]) from None
+    config = parse_machine(data, str(p))
+    problems = []
+    for i, cam in enumerate(config.cam):
+        if cam.csv is not None:
+            try:
+                load_cam_csv(cam, p.parent)
+            except ValueError as e:
+                problems.append(f"cam[{i}].csv = {shown(cam.csv)}: {e}")
+    if problems:
+        raise ConfigError(str(p), problems)
+    return config

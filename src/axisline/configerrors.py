@@ -3,24 +3,99 @@
 pydantic reports a location tuple and a message; a commissioning engineer wants
 "axis[1].drive.tau = -0.01: must be > 0 (allowed: > 0)". The allowed range is read
 from the field's own constraints, so the schema stays the single source of truth.
+
+A value is echoed shortened (`shown`): an error must stay a line, whatever the file holds.
+`read_text` reads the machine file and the files it names within a size limit, and
+`FilePath` is the type of a file name in it.
 """
 
 from __future__ import annotations
 
+import os
+import reprlib
 import typing
-from typing import Any
+from typing import Annotated, Any
 
 import annotated_types as at
-from pydantic import BaseModel, ValidationError
+from pydantic import AfterValidator, BaseModel, ValidationError
+
+#: a value is echoed in an error with at most this many characters: a 1 MB string or a list
+#: of 30 000 tables must not turn one error into megabytes of output
+VALUE_CHARS = 200
+#: a problem line from anywhere (also device code) is cut to this length, as a backstop
+LINE_CHARS = 1200
+#: explain() reports this many problems and counts the rest
+MAX_PROBLEMS = 50
+
+_repr = reprlib.Repr()
+_repr.maxlevel, _repr.maxdict, _repr.maxlist, _repr.maxtuple = 3, 8, 8, 8
+_repr.maxstring, _repr.maxother, _repr.maxlong = VALUE_CHARS, VALUE_CHARS, 60
+
+
+def shown(value: Any) -> str:
+    """repr(value), shortened to about VALUE_CHARS characters (with the full length of a long
+    string and the number of entries of a long list, which say what went wrong)."""
+    text = _repr.repr(value)  # reprlib stops early: never builds the repr of a huge value
+    if len(text) > VALUE_CHARS:
+        text = text[: VALUE_CHARS - 3] + "..."
+    if isinstance(value, str) and len(value) > VALUE_CHARS:
+        text += f" ({len(value)} characters)"
+    elif isinstance(value, (list, tuple, dict)) and len(value) > _repr.maxlist:
+        text += f" ({len(value)} entries)"
+    return text
+
+
+def _bounded(line: str) -> str:
+    if len(line) <= LINE_CHARS:
+        return line
+    cut = len(line) - LINE_CHARS
+    return f"{line[: LINE_CHARS - 300]} ... ({cut} characters left out) ... {line[-300:]}"
 
 
 class ConfigError(ValueError):
     """A machine file that cannot be used; `problems` lists one line per bad key."""
 
     def __init__(self, source: str, problems: list[str]) -> None:
-        self.source = source
-        self.problems = problems
-        super().__init__(f"{source}: " + "; ".join(problems))
+        self.source = _bounded(source)
+        self.problems = [_bounded(p) for p in problems]
+        super().__init__(f"{self.source}: " + "; ".join(self.problems))
+
+
+def _no_nul(path: str | None) -> str | None:
+    if path is not None and "\0" in path:
+        # the operating system cannot name such a file; open() would fail with a bare ValueError
+        raise ValueError(f"a file path cannot contain a NUL character (at position {path.index(chr(0))})")
+    return path
+
+
+#: an optional file named in the machine file, e.g. `memory_file: FilePath = Field(None,
+#: min_length=1, max_length=4096)`; the field's type still reads `str | None` (in the docs)
+FilePath = Annotated[str | None, AfterValidator(_no_nul)]
+
+
+def read_text(path: str | os.PathLike[str], limit: int) -> str:
+    """The UTF-8 text of a file the machine file is or names, at most `limit` bytes.
+
+    Raises ValueError with a one-line reason. The size is checked before the file is read
+    (and no more than limit + 1 bytes are ever read, also from a pipe or a device), so a
+    huge file costs nothing."""
+    try:
+        with open(path, "rb") as f:
+            size = os.fstat(f.fileno()).st_size
+            data = b"" if size > limit else f.read(limit + 1)
+    except OSError as e:
+        raise ValueError(f"cannot read: {e.strerror or e}") from None
+    except ValueError:  # open() of a path with a NUL byte
+        raise ValueError("cannot read: a file path cannot contain a NUL character") from None
+    if size > limit or len(data) > limit:
+        raise ValueError(f"the file is {max(size, len(data)) / 2**20:.1f} MiB; the limit is {limit / 2**20:g} MiB")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        raise ValueError(
+            f"not UTF-8 text: byte 0x{data[e.start]:02x} at position {e.start} (line {line}); save the file as UTF-8"
+        ) from None
 
 
 def _key(loc: tuple[Any, ...]) -> str:
@@ -109,7 +184,8 @@ def allowed_range(info) -> str:
 
 def explain(err: ValidationError, model: type[BaseModel], source: str) -> ConfigError:
     problems = []
-    for e in err.errors():
+    errors = err.errors(include_url=False)
+    for e in errors[:MAX_PROBLEMS]:
         loc = tuple(e["loc"])
         info, clean, _ = _walk(model, loc)
         key = _key(clean)
@@ -128,8 +204,13 @@ def explain(err: ValidationError, model: type[BaseModel], source: str) -> Config
             continue
         rng = allowed_range(info)
         value = e.get("input")
-        line = f"{key} = {value!r}: {e['msg']}"
+        msg = e["msg"]
+        if len(msg) > 2 * VALUE_CHARS:  # pydantic quotes some inputs whole (a union's tag)
+            msg = msg[: 2 * VALUE_CHARS - 3] + "..."
+        line = f"{key} = {shown(value)}: {msg}"
         if rng:
             line += f" (allowed: {rng})"
         problems.append(line)
+    if len(errors) > MAX_PROBLEMS:
+        problems.append(f"... and {len(errors) - MAX_PROBLEMS} more problems")
     return ConfigError(source, problems)

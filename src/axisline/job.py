@@ -39,6 +39,34 @@ COMMANDS: dict[str, tuple[str, ...]] = {
 # commands given to a master rather than an axis
 MASTER_COMMANDS = ("set_master_velocity",)
 
+# the arguments a command cannot do without (the axis API has no default for them): a step
+# without one is a bad machine file, found by `check`, not a crash in the middle of `run`
+REQUIRED: dict[str, tuple[str, ...]] = {
+    "power": ("on",),
+    "move_absolute": ("position",),
+    "move_relative": ("distance",),
+    "move_additive": ("distance",),
+    "move_velocity": ("velocity",),
+    "set_position": ("position",),
+    "jog": ("direction",),
+    "gear_in": ("master", "numerator", "denominator"),
+    "gear_in_pos": ("master", "numerator", "denominator", "master_sync_position", "slave_sync_position"),
+    "cam_in": ("master", "cam"),
+    "cam_out": ("decoupling", "braking", "standstill"),
+    "set_master_velocity": ("master", "velocity"),
+}
+
+# `direction` means a different thing to each command that takes it
+DIRECTIONS: dict[str, tuple[Any, ...]] = {
+    "move_absolute": ("shortest", "positive", "negative", "current"),  # the way to the target (modulo axes)
+    "jog": (-1, 0, 1),  # the jog key pressed
+    "home": (-1, 1, "negative", "positive"),  # the search direction
+}
+
+# positions, distances, velocities and master positions of a step: finite (the model refuses
+# NaN and infinities) and within the range every other length of the machine file keeps to
+_SPAN = 1e9
+
 
 _ARGUMENTS = ("master", "on", "position", "distance", "velocity", "acceleration", "deceleration", "jerk", "buffer_mode",
               "direction", "relative", "method", "switch", "max_distance", "numerator", "denominator",
@@ -49,37 +77,37 @@ _ARGUMENTS = ("master", "on", "position", "distance", "velocity", "acceleration"
 class JobStep(BaseModel):
     """One step: an axis command, or a dwell when `dwell` is given without a command."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
-    axis: str | None = Field(None, description="axis the command goes to")
+    axis: str | None = Field(None, max_length=64, description="axis the command goes to")
     command: Literal[tuple(COMMANDS)] | None = Field(None, description="axis command")  # type: ignore[valid-type]
     wait: Literal["done", "none"] = Field("done", description="wait for the command to be done before the next step")
     dwell: float | None = Field(None, ge=0.0, le=86400.0, description="seconds to wait (after the command, if any)")
     on: bool | None = None
-    position: float | None = None
-    distance: float | None = None
-    velocity: float | None = None
-    acceleration: float | None = Field(None, gt=0.0)
-    deceleration: float | None = Field(None, gt=0.0)
-    jerk: float | None = Field(None, gt=0.0)
+    position: float | None = Field(None, ge=-_SPAN, le=_SPAN)
+    distance: float | None = Field(None, ge=-_SPAN, le=_SPAN)
+    velocity: float | None = Field(None, ge=-_SPAN, le=_SPAN)
+    acceleration: float | None = Field(None, gt=0.0, le=1e12)
+    deceleration: float | None = Field(None, gt=0.0, le=1e12)
+    jerk: float | None = Field(None, gt=0.0, le=1e15)
     buffer_mode: Literal["aborting", "buffered"] | None = None
     direction: Literal["shortest", "positive", "negative", "current", -1, 0, 1] | None = None
     relative: bool | None = None
     method: Literal["direct", "switch"] | None = Field(None, description="homing: set the position here, or search a switch")
-    switch: str | None = Field(None, description="homing: the axis' switch to search")
-    max_distance: float | None = Field(None, gt=0.0, description="homing: give up after this search distance")
-    master: str | None = Field(None, description="couplings: the master (set_master_velocity: the master addressed)")
+    switch: str | None = Field(None, max_length=64, description="homing: the axis' switch to search")
+    max_distance: float | None = Field(None, gt=0.0, le=_SPAN, description="homing: give up after this search distance")
+    master: str | None = Field(None, max_length=64, description="couplings: the master (set_master_velocity: the master addressed)")
     numerator: int | None = Field(None, ge=-(2**62), le=2**62, description="gear: slave counts ...")
     denominator: int | None = Field(None, ge=1, le=2**62, description="gear: ... per master counts")
-    master_sync_position: float | None = Field(None, description="gear_in_pos: master position of synchronism")
-    slave_sync_position: float | None = Field(None, description="gear_in_pos: slave position at that master position")
-    cam: str | None = Field(None, description="cam_in: the cam")
-    coupling: float | None = Field(None, description="cam_in: coupling position M_E in the master cycle")
-    synchronous: float | None = Field(None, description="cam_in: synchronous position M_S in the master cycle")
-    master_offset: float | None = Field(None, description="cam_in: master position of curve position 0")
-    decoupling: float | None = Field(None, description="cam_out: decoupling position M_A in the master cycle")
-    braking: float | None = Field(None, description="cam_out: braking position M_B in the master cycle")
-    standstill: float | None = Field(None, description="cam_out: standstill position S_0 of the slave")
+    master_sync_position: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="gear_in_pos: master position of synchronism")
+    slave_sync_position: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="gear_in_pos: slave position at that master position")
+    cam: str | None = Field(None, max_length=64, description="cam_in: the cam")
+    coupling: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_in: coupling position M_E in the master cycle")
+    synchronous: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_in: synchronous position M_S in the master cycle")
+    master_offset: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_in: master position of curve position 0")
+    decoupling: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_out: decoupling position M_A in the master cycle")
+    braking: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_out: braking position M_B in the master cycle")
+    standstill: float | None = Field(None, ge=-_SPAN, le=_SPAN, description="cam_out: standstill position S_0 of the slave")
 
     def arguments(self) -> dict[str, Any]:
         """Keyword arguments for the axis command (only those given)."""
@@ -92,6 +120,12 @@ class JobStep(BaseModel):
         ]
         if extra:
             raise ValueError(f"job step {self.command!r} does not take {', '.join(extra)} (takes: {', '.join(allowed) or 'nothing'})")
+        if "direction" in given and given["direction"] not in DIRECTIONS[self.command or ""]:
+            allowed_directions = ", ".join(repr(d) for d in DIRECTIONS[self.command or ""])
+            raise ValueError(f"{self.command} direction = {given['direction']!r} (allowed: {allowed_directions})")
+        missing = [k for k in REQUIRED.get(self.command or "", ()) if k not in given]
+        if missing:
+            raise ValueError(f"{self.command} needs {', '.join(missing)} (takes: {', '.join(allowed)})")
         return given
 
 
@@ -99,7 +133,7 @@ class JobConfig(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     repeat: int = Field(1, ge=1, le=1_000_000, description="how many times the steps run")
-    steps: list[JobStep] = Field(default_factory=list)
+    steps: list[JobStep] = Field(default_factory=list, max_length=10_000)
 
 
 @dataclass

@@ -53,7 +53,9 @@ def render() -> str:
     from .config import AxisEntry, MachineSection, MarkEntry, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
     from .job import JobConfig, JobStep
     from .plant.config import DigitalIOConfig, EncoderConfig, MaterialConfig, MeasuringWheelConfig, SpeedChangeConfig
-    from .sync_setup import CamEntry, MasterEntry
+    from .config import MAX_FILE_BYTES
+    from .job import REQUIRED
+    from .sync_setup import MAX_CSV_BYTES, CamEntry, MasterEntry, SegmentEntry
 
     sections = [
         ("[machine]", MachineSection, "The machine as a whole."),
@@ -69,8 +71,10 @@ def render() -> str:
         ("[[master]]", MasterEntry, "A master that slaves follow (gear_in, gear_in_pos, cam_in job steps)."),
         ("[master.wheel]", MeasuringWheelConfig, "kind = \"wheel\": a measuring wheel rolling on the material."),
         ("[[cam]]", CamEntry, "A cam curve over one master cycle (`segments` rows: master_end, slave_end, law)."),
+        ("[[cam]] segments = [...]", SegmentEntry, "One segment of a cam of motion laws; the last one ends at master_period."),
         ("[job]", JobConfig, "The scripted main job."),
-        ("[[job.steps]]", JobStep, "One step: an axis command with its arguments, and/or a dwell."),
+        ("[[job.steps]]", JobStep, "One step: an axis command with its arguments, and/or a dwell. A command needs "
+         + "; ".join(f"{c}: {', '.join(a)}" for c, a in REQUIRED.items()) + "."),
         ("[trace]", TraceConfig, "The scope: what is recorded each cycle."),
     ]
     out = [
@@ -79,7 +83,8 @@ def render() -> str:
         "Generated from the schema by `axisline schema` (do not edit by hand; `tests/test_schema_doc.py`",
         "fails when this file and the code disagree). A key not listed in its table, a value of the",
         "wrong type or outside its range is refused with a message naming the key, the value and the",
-        "allowed range.",
+        "allowed range. A machine file is UTF-8 text of at most "
+        f"{MAX_FILE_BYTES >> 20} MiB (a cam's CSV file at most {MAX_CSV_BYTES >> 20} MiB).",
         "",
     ]
     for title, model, text in sections:

@@ -14,24 +14,29 @@ only turns machine-file words into its objects.
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, model_validator
 
-from .motion.cam import PointTable, SplineTable
+from .configerrors import FilePath, read_text, shown
+from .motion.cam import DEFAULT_MAX_POINTS, PointTable, SplineTable
 from .motion.curve import CamCurve
 from .motion.master import AxisMaster, EncoderMaster, Master, TimeBase, VirtualMaster
-from .motion.segments import SegmentCam
+from .motion.segments import SEGMENT_LAWS, SegmentCam
 from .plant.config import MeasuringWheelConfig
 
 Name = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
+
+#: a cam CSV holds at most DEFAULT_MAX_POINTS lines of two numbers: far below this size
+MAX_CSV_BYTES = 8 << 20
 
 
 class MasterEntry(BaseModel):
     """One master (see the module docstring for the kinds)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     name: Name = Field(description="master name, used by the job's coupling steps")
     kind: Literal["virtual", "time_base", "axis", "wheel", "axis_encoder"] = Field(description="what moves the master")
@@ -39,7 +44,7 @@ class MasterEntry(BaseModel):
     acceleration: float | None = Field(None, gt=0.0, le=1e9, description="virtual: acceleration and deceleration")
     jerk: float | None = Field(None, gt=0.0, le=1e12, description="virtual: jerk (none: constant acceleration)")
     ramp_time: float = Field(0.0, ge=0.0, le=3600.0, description="time_base: time of every speed change, s")
-    axis: str | None = Field(None, description="axis / axis_encoder: the axis")
+    axis: str | None = Field(None, max_length=64, description="axis / axis_encoder: the axis")
     use: Literal["command", "actual"] = Field("command", description="axis: follow its set point or its actual position")
     wheel: MeasuringWheelConfig | None = Field(None, description="wheel: the measuring wheel on the material")
     velocity_filter: Literal["window", "first_order"] = Field("window", description="encoder masters: speed estimate")
@@ -62,19 +67,42 @@ class MasterEntry(BaseModel):
         return self
 
 
+def _law_word(value: Any) -> Any:
+    # the motion library reads law names case-insensitively ("Cycloidal"); so does the file
+    return value.strip().lower() if isinstance(value, str) else value
+
+
+class SegmentEntry(BaseModel):
+    """One segment of a cam of motion laws (motion.segments): from the previous segment's end
+    (master 0 and `start` for the first) to (master_end, slave_end), along `law`."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+    master_end: float = Field(gt=0.0, le=1e9, description="master position where the segment ends")
+    slave_end: float = Field(ge=-1e9, le=1e9, description="slave position there")
+    law: Annotated[Literal[SEGMENT_LAWS], BeforeValidator(_law_word)] = Field(  # type: ignore[valid-type]
+        description="motion law (dwell: the slave rests; auto: C2 transition between its neighbours)"
+    )
+
+
 class CamEntry(BaseModel):
     """One cam curve over a master cycle."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
     name: Name = Field(description="cam name, used by cam_in steps")
     master_period: float = Field(gt=0.0, le=1e9, description="master cycle length, master units")
     kind: Literal["table", "spline", "segments"] = Field("table", description="linear point table, C2 spline, or motion laws")
-    points: list[tuple[float, float]] | None = Field(None, description="table / spline: (master, slave) pairs")
-    csv: str | None = Field(None, description="table / spline: a CSV file (header master,slave), relative to the machine file")
-    segments: list[dict[str, Any]] | None = Field(None, description="segments: master_end, slave_end, law")
+    points: list[tuple[float, float]] | None = Field(
+        None, max_length=DEFAULT_MAX_POINTS, description="table / spline: (master, slave) pairs"
+    )
+    csv: FilePath = Field(None, min_length=1, max_length=4096, description="table / spline: a CSV file (header master,slave), relative to the machine file")
+    segments: list[SegmentEntry] | None = Field(None, max_length=1000, description="segments: master_end, slave_end, law")
     start: float = Field(0.0, ge=-1e9, le=1e9, description="segments: slave position at master 0")
     periodic: bool = Field(True, description="spline / segments: the curve repeats C2 across the cycle")
+    # the curve, once built: a curve given inline is built while the file is checked (so a
+    # curve the motion library refuses is a bad machine file), a CSV one when it is loaded
+    _curve: CamCurve | None = PrivateAttr(None)
 
     @model_validator(mode="after")
     def _source(self) -> "CamEntry":
@@ -82,29 +110,66 @@ class CamEntry(BaseModel):
         wanted = "segments" if self.kind == "segments" else "points or csv"
         if len(given) != 1 or (self.kind == "segments") != (given[0] == "segments"):
             raise ValueError(f"cam {self.name!r} of kind {self.kind!r} needs exactly one of: {wanted} (given: {', '.join(given) or 'none'})")
+        if self.csv is None:
+            self._curve = _curve(self, None)
         return self
 
 
+def _curve(entry: CamEntry, rows: list[tuple[float, float]] | None) -> CamCurve:
+    """The motion library's curve; its ValueError names the segment or point, the value and
+    what is allowed, and is put under the cam's name here."""
+    try:
+        if entry.segments is not None:
+            return SegmentCam(
+                [s.model_dump() for s in entry.segments],
+                start=entry.start, master_period=entry.master_period, periodic=entry.periodic,
+            )
+        points = rows if rows is not None else entry.points or []
+        master = [p[0] for p in points]
+        slave = [p[1] for p in points]
+        if not master or master[-1] != entry.master_period:
+            last = master[-1] if master else None
+            raise ValueError(f"the last master point {last!r} must equal master_period {entry.master_period!r}")
+        if entry.kind == "spline":
+            return SplineTable(master, slave, entry.periodic)
+        return PointTable(master, slave)
+    except ValueError as e:
+        raise ValueError(f"cam {entry.name!r}: {e}") from None
+
+
+def load_cam_csv(entry: CamEntry, base_dir: Path) -> CamCurve:
+    """Read the cam's CSV (header master,slave; further columns are ignored) and build its
+    curve; ValueError with a one-line reason naming the line."""
+    assert entry.csv is not None
+    text = read_text(base_dir / entry.csv, MAX_CSV_BYTES)
+    rows: list[tuple[float, float]] = []
+    reader = csv.DictReader(io.StringIO(text, newline=""))
+    try:
+        header = reader.fieldnames
+        if header is None or not {"master", "slave"} <= set(header):
+            raise ValueError(f"expected a header master,slave (got {shown(', '.join(header or [])) if header else 'nothing'})")
+        for r in reader:
+            if len(rows) >= DEFAULT_MAX_POINTS:
+                raise ValueError(f"line {reader.line_num}: more than {DEFAULT_MAX_POINTS} points (allowed: at most {DEFAULT_MAX_POINTS})")
+            try:
+                rows.append((float(r["master"]), float(r["slave"])))
+            except (TypeError, ValueError):
+                raise ValueError(
+                    f"line {reader.line_num}: master = {shown(r['master'])}, slave = {shown(r['slave'])}: expected two numbers"
+                ) from None
+    except csv.Error as e:  # e.g. a NUL character in the text
+        raise ValueError(f"line {reader.line_num}: not CSV: {e}") from None
+    entry._curve = _curve(entry, rows)
+    return entry._curve
+
+
 def build_cam(entry: CamEntry, base_dir: Path) -> CamCurve:
-    if entry.kind == "segments":
-        return SegmentCam(entry.segments, start=entry.start, master_period=entry.master_period, periodic=entry.periodic)
+    """The cam's curve: built when the machine file was checked, else now."""
+    if entry._curve is not None:
+        return entry._curve
     if entry.csv is not None:
-        path = (base_dir / entry.csv).resolve()
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = [r for r in csv.DictReader(f)]
-        try:
-            master = [float(r["master"]) for r in rows]
-            slave = [float(r["slave"]) for r in rows]
-        except (KeyError, ValueError) as e:
-            raise ValueError(f"cam {entry.name!r}: {path}: expected a header master,slave and numbers ({e})") from None
-    else:
-        master = [p[0] for p in entry.points]
-        slave = [p[1] for p in entry.points]
-    if not master or master[-1] != entry.master_period:
-        raise ValueError(f"cam {entry.name!r}: the last master point {master[-1] if master else None!r} must equal master_period {entry.master_period!r}")
-    if entry.kind == "spline":
-        return SplineTable(master, slave, entry.periodic)
-    return PointTable(master, slave)
+        return load_cam_csv(entry, base_dir)
+    return _curve(entry, None)
 
 
 def build_master(entry: MasterEntry, machine: Any) -> tuple[Master, Any]:

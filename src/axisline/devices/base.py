@@ -43,8 +43,21 @@ def load(name: str) -> type["Personality"]:
     return getattr(importlib.import_module(module), cls)
 
 
+class ByteSession(Protocol):
+    """One connection's side of a byte-stream protocol: its receive buffer and parser state."""
+
+    def feed(self, data: bytes) -> bytes: ...
+
+
 class ByteEndpoint(Protocol):
-    """A byte-stream protocol (serial register access, ASCII interface): bytes in, reply bytes out."""
+    """A byte-stream protocol (serial register access, ASCII interface): bytes in, reply bytes out.
+
+    `session()` is called once per connection (TCP client, the pty), outside the cycle: it
+    only makes parser state, so that a request one client leaves half-sent can never run
+    into another client's bytes. Its `feed` runs at cycle boundaries; `feed` here is the
+    endpoint's own session, for in-process callers."""
+
+    def session(self) -> ByteSession: ...
 
     def feed(self, data: bytes) -> bytes: ...
 
@@ -96,6 +109,11 @@ class Personality(ABC):
 
     def persist(self) -> list[Path]:
         """Save what must survive a restart (atomically); returns the files written."""
+        return []
+
+    def store_paths(self) -> list[Path]:
+        """The files the device keeps its stored data in (`serve` removes the temporary files
+        that interrupted saves left beside them before it starts)."""
         return []
 
     # -- reporting (axisline run) ---------------------------------------------------------

@@ -14,9 +14,10 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import IO, Any
 
-__all__ = ["atomic_open", "atomic_write_bytes", "atomic_write_text"]
+__all__ = ["atomic_open", "atomic_write_bytes", "atomic_write_text", "remove_stale_temporaries", "unwritable_reason"]
 
 _WRITE_MODES = frozenset({"w", "wt", "wb"})
+_TMP_SUFFIX = ".tmp"  # temporary files are ".NAME.<random>.tmp" beside NAME (remove_stale_temporaries)
 
 
 def _umask() -> int:
@@ -77,7 +78,7 @@ def atomic_open(
     if not binary and encoding is None:
         encoding = "utf-8"  # never the locale's: files must read the same on every machine
 
-    fd, tmp_path = tempfile.mkstemp(dir=directory, prefix=f".{name}.", suffix=".tmp")
+    fd, tmp_path = tempfile.mkstemp(dir=directory, prefix=f".{name}.", suffix=_TMP_SUFFIX)
     try:
         os.chmod(tmp_path, _new_file_mode(target))
         file = os.fdopen(fd, mode, encoding=encoding, newline=newline)
@@ -112,3 +113,62 @@ def atomic_write_text(
     """Replace ``path`` with ``text`` atomically (UTF-8 by default)."""
     with atomic_open(path, "w", encoding=encoding, newline=newline) as file:
         file.write(text)
+
+
+def remove_stale_temporaries(path: str | os.PathLike[str]) -> list[str]:
+    """Remove the temporary files that interrupted atomic writes of ``path`` left beside it.
+
+    A process killed between creating ``.NAME.<random>.tmp`` and the rename leaves it behind;
+    the target itself is intact. Call this only where no other writer of ``path`` can be
+    running (a device's start), since a live writer's temporary file looks the same.
+    Returns the paths removed; a directory that cannot be listed removes nothing.
+    """
+    directory, name = os.path.split(os.path.abspath(os.fspath(path)))
+    prefix = f".{name}."
+    removed: list[str] = []
+    try:
+        entries = os.listdir(directory)
+    except OSError:
+        return removed
+    for entry in entries:
+        # prefix + at least one random character + suffix: never NAME itself or ".NAME.tmp"
+        if not (entry.startswith(prefix) and entry.endswith(_TMP_SUFFIX)) or len(entry) <= len(prefix) + len(_TMP_SUFFIX):
+            continue
+        candidate = os.path.join(directory, entry)
+        if not os.path.isfile(candidate) or os.path.islink(candidate):
+            continue  # mkstemp makes regular files only; anything else is not ours
+        try:
+            os.unlink(candidate)
+        except FileNotFoundError:
+            continue
+        removed.append(candidate)
+    return removed
+
+
+def unwritable_reason(path: str | os.PathLike[str]) -> str | None:
+    """Why an atomic write of ``path`` would fail, or None if it can be written.
+
+    The write needs a regular file (or nothing) at ``path`` and a writable directory for
+    the temporary file and the rename; missing directories count as writable when the
+    nearest existing one is (callers create them with ``mkdir(parents=True)``). A file
+    that exists read-only is refused too: it was made read-only to keep it as it is.
+    """
+    target = os.path.abspath(os.fspath(path))
+    if os.path.isdir(target):
+        return "is a directory, not a file"
+    if os.path.lexists(target):
+        if not os.path.isfile(target):
+            return "exists and is not a regular file"
+        if not os.access(target, os.W_OK):
+            return "is read-only"
+    directory = os.path.dirname(target)
+    while not os.path.lexists(directory):
+        parent = os.path.dirname(directory)
+        if parent == directory:
+            break
+        directory = parent
+    if not os.path.isdir(directory):
+        return f"{directory} is not a directory"
+    if not os.access(directory, os.W_OK | os.X_OK):
+        return f"directory {directory} is not writable"
+    return None

@@ -217,7 +217,7 @@ class MaterialConfig(PlantModel):
     )
     position: Position = Field(0.0, description="Initial material position, user units.")
     profile: list[SpeedChangeConfig] = Field(
-        default_factory=list, description="Speed changes over time, applied in time order."
+        default_factory=list, max_length=10_000, description="Speed changes over time, applied in time order."
     )
 
     def build(self) -> MaterialLine:
@@ -253,6 +253,14 @@ class PrintMarkConfig(PlantModel):
         if self.positions is not None:
             if "pitch" in self.model_fields_set and self.pitch is not None:
                 raise ValueError("give either pitch or positions, not both")
+            # the rule of PrintMarks: checked here, so a file that would fail to build is refused
+            ordered = sorted(self.positions)
+            for a, b in zip(ordered, ordered[1:]):
+                if b - a <= self.width:
+                    raise ValueError(
+                        f"positions: the marks at {a!r} and {b!r} overlap (width {self.width!r}; "
+                        "allowed: marks more than a width apart)"
+                    )
         elif self.pitch is None:
             raise ValueError("give pitch or positions")
         elif self.width + 6.0 * self.jitter >= self.pitch:

@@ -2,14 +2,23 @@
 
 from __future__ import annotations
 
+import socket
+import threading
+import time
+
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axisline.devices.compax import CompaxError
-from axisline.devices.compax.ascii import MAX_LINE, PROMPT, AsciiEndpoint, CamCommands
+from axisline.devices.compax.ascii import MAX_ERROR_REPLY, MAX_LINE, PROMPT, AsciiEndpoint, CamCommands, error_reply
 from axisline.devices.compax.cammemory import CamMemory
 from axisline.devices.compax.curves import read_curve
 from axisline.devices.compax.parameters import Parameters
 from axisline.devices.compax.status import LOOP_ENDLESS, StatusValues
+from axisline.fieldbus.serial_tcp import SerialTcpServer
+
+from .test_personality import _cycling, build, small
 
 
 class Recorder:
@@ -285,3 +294,137 @@ def test_status_read():
 def test_execute_answers_one_line():
     ep = endpoint()
     assert ep.execute("F6=.5") == PROMPT and ep.execute("F6") == b"F0006=0.5000000" + PROMPT
+
+
+# -- sessions: one line buffer per connection ---------------------------------------------------
+
+
+def test_sessions_share_the_device_but_not_the_half_received_line():
+    ep = endpoint()
+    a, b = ep.session(), ep.session()
+    assert a.feed(b"F6") == b"" and a.pending == b"F6"
+    assert b.feed(b"F6=.5\r") == PROMPT and b.pending == b""  # b's line is b's alone
+    assert a.feed(b"\r") == b"F0006=0.5000000" + PROMPT  # the same cam memory
+    assert ep.feed(b"F6\r") == b"F0006=0.5000000" + PROMPT  # the endpoint's own session
+
+
+class _Fed:
+    """The machine's command queue, keeping the server's submissions (to wait until one ran)."""
+
+    def __init__(self, commands) -> None:
+        self.commands = commands
+        self.futures: list = []
+
+    def submit(self, fn, *args):
+        future = self.commands.submit(fn, *args)
+        self.futures.append(future)
+        return future
+
+    def wait(self, n: int) -> None:
+        deadline = time.monotonic() + 5
+        while not (len(self.futures) >= n and all(f.done() for f in self.futures)):
+            assert time.monotonic() < deadline, "the cycle did not take the bytes"
+            time.sleep(0.005)
+
+
+@pytest.fixture
+def served():
+    """The COMPAX personality served over TCP on a cycling machine: (machine, server, queue)."""
+    m = build(small())
+    m.run(0.1)
+    fed = _Fed(m.commands)
+    srv = SerialTcpServer(m.device.byte_endpoint(), fed).start()
+    stop = threading.Event()
+    th = threading.Thread(target=_cycling, args=(m, stop))
+    th.start()
+    try:
+        yield m, srv, fed
+    finally:
+        stop.set()
+        th.join()
+        srv.stop()
+
+
+def _host_read(sock) -> bytes:
+    """Read as the manual's host does: up to the prompt ">"."""
+    got = b""
+    while not got.endswith(b">"):
+        chunk = sock.recv(1)
+        if not chunk:
+            break
+        got += chunk
+    return got
+
+
+def test_a_half_line_of_a_closed_connection_is_not_glued_onto_the_next_clients_line(served):
+    m, srv, fed = served
+    m.device.network_writes = True
+    with socket.create_connection(srv.address, timeout=5) as first:
+        first.sendall(b"F6")  # a host that dies in the middle of "F6<cr>"
+        fed.wait(1)
+    with socket.create_connection(srv.address, timeout=5) as second:
+        second.sendall(b"P33\r")
+        assert _host_read(second) == b"P033=0" + PROMPT  # not "F6P33"
+    with socket.create_connection(srv.address, timeout=5) as third:
+        third.sendall(b"F6=.5")  # a write that was never ended
+        fed.wait(3)
+    with socket.create_connection(srv.address, timeout=5) as fourth:
+        fourth.sendall(b"\r")  # an empty line, to see the prompt, must not end the dead client's write
+        assert _host_read(fourth) == PROMPT
+    assert m.device.memory.read("F", 6) == 0.0
+
+
+# lines that are refused, one or more for every error number of the interface
+REFUSED_LINES = [
+    b"hello", b"F=1", b"F6=abc", b"F6=>", b"F6 > 1", b"I5460=3.5", b"B7=1;2", b"\xff\xfe", b"F" + b"0" * 40,
+    b"F0", b"F5461=0", b"B9999=1;2;3",  # E102
+    b"F6=1.5", b"I5460=8388608", b"B7=256;0;0", b"P33=7", b"LOOP 70000", b"SETM 101",  # E103
+    b"F3=.5", b"I3=5",  # E104
+    b"P7", b"P7=1", b"S40",  # E105 (with the long lists of what is known)
+    b"SETC 9",  # E17
+    b"SETM 50", b"LOOP .P31", b"SETC .P50",  # E107 / E103
+]
+
+
+def test_every_error_reply_over_tcp_is_one_short_ascii_line_ending_at_the_prompt(served):
+    # the manual's host reads up to ">": a ">" inside an error text would cut the reply in two
+    # and leave the rest to be taken as the answer to the host's next line
+    m, srv, _ = served
+    with socket.create_connection(srv.address, timeout=5) as c:
+        for writes in (False, True):  # refused for want of --allow-writes (E104 / E107), then as lines
+            m.device.network_writes = writes
+            for line in REFUSED_LINES + [b"F6=0.5", b"VF", b"RESETF", b"P35=2"] * (not writes):
+                c.sendall(line + b"\r")
+                reply = _host_read(c)
+                assert reply.startswith(b"!E") and reply.endswith(PROMPT), (line, reply)
+                text = reply[: -len(PROMPT)]
+                assert len(text) <= MAX_ERROR_REPLY and all(0x20 <= b < 0x7F for b in text), (line, reply)
+                c.sendall(b"S30\r")  # the next answer is the next line's, whole
+                assert _host_read(c) == f"S030={int(text[2:].split()[0])}.000".encode() + PROMPT
+
+
+@settings(max_examples=300)
+@given(st.lists(st.binary(max_size=40).map(lambda b: b.replace(b"\r", b"")), min_size=1, max_size=5))
+def test_any_line_gets_exactly_one_prompt(lines):
+    # whatever a host sends, every line is answered with exactly one ">", the prompt at its end
+    ep = endpoint(Recorder())
+    out = ep.feed(b"".join(line + b"\r" for line in lines))
+    assert out.count(b">") == len(lines) and out.endswith(PROMPT)
+    for reply in out.split(PROMPT)[:-1]:
+        assert all(0x20 <= b < 0x7F for b in reply) and (not reply.startswith(b"!E") or len(reply) <= MAX_ERROR_REPLY)
+
+
+@given(st.integers(1, 999), st.text(max_size=300))
+def test_error_reply_of_any_text_is_printable_ascii_short_and_without_a_prompt_sign(code, message):
+    line = error_reply(code, message)
+    assert line.startswith(f"!E{code} ".encode()) and len(line) <= MAX_ERROR_REPLY
+    assert b">" not in line and all(0x20 <= b < 0x7F for b in line)
+
+
+def test_error_texts_of_the_cam_operation_keep_their_meaning_without_the_prompt_sign():
+    ep = endpoint(Recorder(CompaxError("coupling M_E = 0.5 > synchronous M_S = 0.3 (§22); first_point ≥ 1 and "
+                                       "first_point >= 1", code=103)))
+    reply = ep.feed(b"LOOP 1\r")
+    assert reply == (b"!E103 coupling M_E = 0.5 more than synchronous M_S = 0.3 (sec. 22); first_point at least 1 "
+                     b"and..." + PROMPT)
+    assert error_reply(101, "line 'F6 > 1'\n\tnot\x07 ASCII: µ") == b"!E101 line 'F6 more than 1' not? ASCII: ?"

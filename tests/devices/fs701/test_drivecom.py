@@ -263,3 +263,15 @@ def test_reply_parsing_and_builders():
         build_write(11, 0x0000, "1\x03")
     with pytest.raises(DrivecomError):
         build_read(11, 0x10000)
+
+
+def test_sessions_frame_apart_on_one_unit(unit):
+    # one connection's telegram is its own: a write cut off before its BCC cannot take the next
+    # client's EOT as the BCC (and swallow its read)
+    m, ep = unit
+    a, b = ep.session(), ep.session()
+    w = build_write(11, 0x0000, 2500)
+    assert a.feed(w[:-1]) == b""
+    assert b.feed(build_read(11, 0x0000)) == build_reply(0, "1000")
+    assert a.feed(w[-1:]) == bytes([ACK]) and m.params.cutting_length == 2500  # the same unit
+    assert ep.telegrams == 2 and ep.feed(build_read(11, 0x0000)) == build_reply(0, "2500")

@@ -118,6 +118,48 @@ def test_drivecom_over_tcp_reads_writes_and_naks():
     assert dev.params.sync_rate == 1.5 and dev.settings.sync_rate == 1.5  # the cutter took it
 
 
+class Fed:
+    """The machine's command queue, keeping the server's submissions (to wait until one ran)."""
+
+    def __init__(self, commands) -> None:
+        self.commands = commands
+        self.futures: list = []
+
+    def submit(self, fn, *args):
+        future = self.commands.submit(fn, *args)
+        self.futures.append(future)
+        return future
+
+    def wait(self, n: int) -> None:
+        deadline = time.monotonic() + 5
+        while not (len(self.futures) >= n and all(f.done() for f in self.futures)):
+            assert time.monotonic() < deadline, "the cycle did not take the bytes"
+            time.sleep(0.005)
+
+
+def test_drivecom_telegram_left_unfinished_by_a_client_does_not_touch_the_next_clients():
+    m = machine()
+    dev = m.device
+    dev.network_writes = True
+    fed = Fed(m.commands)
+    srv = SerialTcpServer(dev.byte_endpoint(), fed).start()
+    try:
+        with Cycling(m):
+            with socket.create_connection(srv.address, timeout=5) as first:
+                first.sendall(build_write(11, CUTTING_LENGTH, 700)[:-1])  # the write without its BCC
+                fed.wait(1)
+            with socket.create_connection(srv.address, timeout=5) as second:
+                # its EOT is not the dead write's BCC: the read is answered, the write never made
+                second.sendall(build_read(11, CUTTING_LENGTH))
+                r = parse_reply(recv_reply(second))
+                assert (r.kind, r.code, r.value) == ("data", CUTTING_LENGTH, 1000)
+                second.sendall(build_write(11, CUTTING_LENGTH, 800))  # and its own write works
+                assert recv_reply(second) == bytes([ACK])
+    finally:
+        srv.stop()
+    assert dev.params.cutting_length == 800
+
+
 def test_modbus_reads_and_writes_holding_registers():
     m = machine()
     dev = m.device
@@ -136,7 +178,7 @@ def test_modbus_reads_and_writes_holding_registers():
                 assert not w.isError()
                 assert c.read_holding_registers(2 * CUTTING_LENGTH, count=2).registers == encode_words(900, 2)
                 bad = c.write_registers(2 * CUTTING_LENGTH, encode_words(0, 2))  # below the range
-                assert bad.isError() and bad.exception_code == 2
+                assert bad.isError() and bad.exception_code == 3  # illegal data value
                 half = c.write_register(2 * CUTTING_LENGTH + 1, 5)  # half of a 32-bit entry
                 assert half.isError()
                 assert c.read_holding_registers(2 * CUTTING_LENGTH, count=2).registers == encode_words(900, 2)

@@ -17,7 +17,7 @@ Errors
 Every bad input raises `CompaxError` (a ``ValueError``). ``code`` is the device's error
 number where the manual names one (E17 "Curve not present", ...). The supplement numbers
 no error for a malformed interface line, an address out of range or a value that does not
-fit; those carry axisline's own numbers 101 ... 107 (`INTERFACE_ERRORS`), chosen above the
+fit; those carry axisline's own numbers 101 ... 108 (`INTERFACE_ERRORS`), chosen above the
 device's E1 ... E99 so they can never be mistaken for a device error number.
 """
 
@@ -40,6 +40,7 @@ __all__ = [
     "E_UNKNOWN",
     "E_CAPACITY",
     "E_NOT_AVAILABLE",
+    "E_STORE",
 ]
 
 #: Error numbers the manual names (compax.md §5.1).
@@ -65,6 +66,7 @@ E_RESERVED = 104
 E_UNKNOWN = 105
 E_CAPACITY = 106
 E_NOT_AVAILABLE = 107
+E_STORE = 108
 
 INTERFACE_ERRORS: dict[int, str] = {
     E_SYNTAX: "malformed line",
@@ -74,6 +76,7 @@ INTERFACE_ERRORS: dict[int, str] = {
     E_UNKNOWN: "unknown parameter or status number",
     E_CAPACITY: "cam memory capacity exceeded",
     E_NOT_AVAILABLE: "command not available",
+    E_STORE: "data could not be stored (the line changed nothing)",
 }
 
 

@@ -5,8 +5,12 @@
     endpoint.feed(b"F6=0.1234567\\r")      # -> b"\\r\\n>"
     endpoint.feed(b"F6\\r")                # -> b"F0006=0.1234567\\r\\n>"
 
-Bytes in, bytes out, no sockets: a transport (serial port, pty, TCP) calls `feed` with
-whatever it received and sends back what `feed` returns. Lines may arrive in pieces;
+Bytes in, bytes out, no sockets: a transport (serial port, pty, TCP) takes one
+`endpoint.session()` per connection, calls its `feed` with whatever it received and sends
+back what `feed` returns; `endpoint.feed` is one such session for in-process callers.
+Memory, parameters and status are the device's; only the half-received line belongs to
+the session, so a line one client leaves unfinished cannot run into the next client's
+("F6" + "P33<cr>" would read as "F6P33"). Lines may arrive in pieces;
 <cr> ends a line, <lf> "has no meaning" and is dropped, spaces are ignored, letters may
 be lower case.
 
@@ -38,14 +42,18 @@ and is answered with ``!E<number> <what was wrong>``; S30 ("last error", the man
 to check a transfer) then holds the number. The numbers: E17 curve not present (the
 manual's); E101 malformed line, E102 address out of range, E103 value does not fit, E104
 reserved address, E105 unknown parameter / status, E107 command not available (axisline's,
-see `axisline.devices.compax`).
+see `axisline.devices.compax`). An error reply is at most `MAX_ERROR_REPLY` printable
+ASCII characters and never holds a ">" before the prompt (`error_reply`, decision 1).
 
 Decisions (spec line -> choice, why)
 ------------------------------------
 1. §6.1 [GAP] error reply: the supplement only says errors are checked with S30 "last
    error"; the standard User Guide (not among our sources) says errors are reported
    "depending on P20". Chosen: ``!E<n> <text>`` before the usual <cr><lf>>, and S30 = n,
-   so a host that only checks S30 and one that reads the reply both see it.
+   so a host that only checks S30 and one that reads the reply both see it. The text is
+   for a person: printable ASCII, ">" written out (" > " -> " more than ", " >= " ->
+   " at least ", any other ">" -> "?", as a byte the reply cannot carry), cut at a word
+   to at most 100 characters for the whole line (docs/compax.md "Error replies").
 2. §6.1 read-back: "F6<cr>" -> "F0006=0.1234567<cr><lf>>" (address zero-padded to 4
    digits, 7 decimals; see `cammemory.format_fraction` for which 7 decimals). By the same
    pattern I reads back "I5460=360" (signed decimal) and B "B0007=1;10;246" (three
@@ -84,12 +92,15 @@ from axisline.devices.compax.curves import read_curve
 from axisline.devices.compax.parameters import Parameters
 from axisline.devices.compax.status import StatusValues, format_status
 
-__all__ = ["MAX_LINE", "PROMPT", "AsciiEndpoint", "CamCommands"]
+__all__ = ["MAX_ERROR_REPLY", "MAX_LINE", "PROMPT", "AsciiEndpoint", "AsciiSession", "CamCommands", "error_reply"]
 
 #: What ends every answer: <cr> <lf> and the prompt ">" ($3E).
 PROMPT = b"\r\n>"
 #: Longest line accepted (decision 4).
 MAX_LINE = 30
+#: Longest error reply before <cr><lf>> (decision 1): the host's receive buffer is not
+#: ours to overrun, and a parameter list of E105 would otherwise run to 450 characters.
+MAX_ERROR_REPLY = 100
 
 
 @runtime_checkable
@@ -126,11 +137,36 @@ _RE_NUMBER = re.compile(_NUMBER)
 _RE_INTEGER = re.compile(_INTEGER)
 _RE_OPERATION_PARAM = re.compile(r"\.P(\d+)")
 # error texts name formulas with a few non-ASCII signs; the line carries ASCII only
-_ASCII = str.maketrans({"·": "*", "‰": " per mille", "≤": "<=", "±": "+/-", "²": "^2", "⁻": "^-", "¹": "1"})
+_ASCII = str.maketrans({"·": "*", "‰": " per mille", "≤": "<=", "≥": ">=", "±": "+/-", "²": "^2", "⁻": "^-",
+                        "¹": "1", "§": "sec. "})
+# the manual's host reads up to ">" (the prompt): a ">" in the text would end its read early
+_GREATER = ((" >= ", " at least "), (" > ", " more than "), (">", "?"))
+
+
+def error_reply(code: int, message: str) -> bytes:
+    """The error line ``!E<code> <text>`` (without the prompt) of decision 1: printable
+    ASCII, no ">", at most `MAX_ERROR_REPLY` characters."""
+    text = " ".join(message.translate(_ASCII).split())  # one line: <cr> / <lf> / tabs as spaces
+    for sign, words in _GREATER:
+        text = text.replace(sign, words)
+    text = "".join(c if " " <= c <= "~" else "?" for c in text)
+    line = f"!E{code} {text}"
+    if len(line) > MAX_ERROR_REPLY:
+        cut = line[: MAX_ERROR_REPLY - 3]
+        if " " in cut[len(f"!E{code} "):]:  # end at a word, not inside a number
+            cut = cut.rsplit(" ", 1)[0]
+        line = cut.rstrip(" ,;:") + "..."
+    return line.encode("ascii")
+
+
+def _echo(text: str) -> str:
+    """The host's line as an error text shows it: its ">" as "?" (see `error_reply`), so
+    that "F6 > 1" is not shown as "F6 more than 1"."""
+    return text.strip().replace(">", "?")
 
 
 def _syntax(line: str, what: str) -> CompaxError:
-    return CompaxError(f"malformed line {line!r}: {what}", code=E_SYNTAX, field="line", value=line)
+    return CompaxError(f"malformed line {_echo(line)!r}: {what}", code=E_SYNTAX, field="line", value=line)
 
 
 class AsciiEndpoint:
@@ -147,36 +183,25 @@ class AsciiEndpoint:
         self.parameters = parameters
         self.commands = commands
         self.status = status if status is not None else StatusValues()
-        #: the last error answered (None before the first)
+        #: the last error answered on any session (None before the first); S30 is the device's
         self.last_error: CompaxError | None = None
-        self._buffer = bytearray()
-        self._overlong = False
+        self._session = AsciiSession(self)
 
     # -- transport side ---------------------------------------------------------------------
 
+    def session(self) -> "AsciiSession":
+        """A line buffer of its own for one connection (see the module doc)."""
+        return AsciiSession(self)
+
     def feed(self, data: bytes) -> bytes:
-        """Take received bytes; return the answers to every line they complete."""
-        out = bytearray()
-        for byte in bytes(data):
-            if byte == 0x0A:  # <lf> has no meaning
-                continue
-            if byte == 0x0D:
-                raw = bytes(self._buffer)
-                overlong = self._overlong
-                self._buffer.clear()
-                self._overlong = False
-                out += self._answer(raw, overlong)
-                continue
-            if len(self._buffer) >= MAX_LINE:
-                self._overlong = True
-            else:
-                self._buffer.append(byte)
-        return bytes(out)
+        """Take received bytes; return the answers to every line they complete (the
+        endpoint's own session: for in-process callers, not for a second connection)."""
+        return self._session.feed(data)
 
     @property
     def pending(self) -> bytes:
-        """Bytes of a line not yet ended by <cr>."""
-        return bytes(self._buffer)
+        """Bytes of a line not yet ended by <cr> (the endpoint's own session)."""
+        return self._session.pending
 
     def execute(self, line: str) -> bytes:
         """Answer one line (without its <cr>), as `feed` would."""
@@ -198,7 +223,7 @@ class AsciiEndpoint:
             self.last_error = exc
             code = exc.code if exc.code is not None else E_VALUE
             self.status[30] = code
-            body = f"!E{code} {str(exc).translate(_ASCII)}"
+            return error_reply(code, str(exc)) + PROMPT
         return body.encode("ascii", "replace") + PROMPT
 
     # -- lines --------------------------------------------------------------------------------
@@ -231,7 +256,7 @@ class AsciiEndpoint:
             handler = self._handler(text)
             home = getattr(handler, "posa_home", None)
             if not callable(home):
-                raise CompaxError(f"{text.strip()!r}: the attached cam operation has no machine datum travel",
+                raise CompaxError(f"{_echo(text)!r}: the attached cam operation has no machine datum travel",
                                   code=E_NOT_AVAILABLE, field="command", value=text)
             self._call(home)
             return ""
@@ -250,8 +275,8 @@ class AsciiEndpoint:
         if match:
             self._cam(text, match[1], match[2])
             return ""
-        raise _syntax(text, "not a command of this interface (F/I/B<address>[=value], RESETF, VF, SETC, SETM, "
-                            "SETS, POSR CAM, POSA HOME, LOOP, P<n>[=value], VP, VC, RESETP, S<n>)")
+        # the list of lines is in docs/compax.md: spelt out here it would not fit an error reply
+        raise _syntax(text, "not a command of this interface")
 
     def _memory(self, text: str, fmt: Fmt, address: int, value: str | None) -> str:
         if value is None:
@@ -289,7 +314,7 @@ class AsciiEndpoint:
 
     def _handler(self, text: str) -> CamCommands:
         if self.commands is None:
-            raise CompaxError(f"{text.strip()!r}: no cam operation is attached to this interface",
+            raise CompaxError(f"{_echo(text)!r}: no cam operation is attached to this interface",
                               code=E_NOT_AVAILABLE, field="command", value=text)
         return self.commands
 
@@ -298,11 +323,11 @@ class AsciiEndpoint:
         if match:
             number = int(match[1])
             if not 40 <= number <= 49:
-                raise CompaxError(f"{text.strip()!r}: .P{number} not allowed; commands may refer to P40 ... P49",
+                raise CompaxError(f"{_echo(text)!r}: .P{number} not allowed; commands may refer to P40 ... P49",
                                   code=E_VALUE, field="argument", value=raw, allowed=".P40 ... .P49")
             value = self.parameters.valid[number]
             if integer and value != int(value):
-                raise CompaxError(f"{text.strip()!r}: P{number} = {value} is not an integer", code=E_VALUE,
+                raise CompaxError(f"{_echo(text)!r}: P{number} = {value} is not an integer", code=E_VALUE,
                                   field=f"P{number}", value=value, allowed="an integer")
             return int(value) if integer else float(value)
         if integer:
@@ -343,3 +368,38 @@ class AsciiEndpoint:
 
     def __repr__(self) -> str:
         return f"AsciiEndpoint(memory={self.memory!r}, commands={type(self.commands).__name__})"
+
+
+class AsciiSession:
+    """One connection's line buffer on an `AsciiEndpoint`: ``feed(bytes) -> bytes``.
+
+    Dropped with its connection, so what a client left unfinished goes with it."""
+
+    def __init__(self, endpoint: AsciiEndpoint) -> None:
+        self.endpoint = endpoint
+        self._buffer = bytearray()
+        self._overlong = False
+
+    def feed(self, data: bytes) -> bytes:
+        """Take received bytes; return the answers to every line they complete."""
+        out = bytearray()
+        for byte in bytes(data):
+            if byte == 0x0A:  # <lf> has no meaning
+                continue
+            if byte == 0x0D:
+                raw = bytes(self._buffer)
+                overlong = self._overlong
+                self._buffer.clear()
+                self._overlong = False
+                out += self.endpoint._answer(raw, overlong)
+                continue
+            if len(self._buffer) >= MAX_LINE:
+                self._overlong = True
+            else:
+                self._buffer.append(byte)
+        return bytes(out)
+
+    @property
+    def pending(self) -> bytes:
+        """Bytes of a line not yet ended by <cr>."""
+        return bytes(self._buffer)

@@ -524,6 +524,13 @@ class CamMemory:
         other._overflow = self._overflow
         return other
 
+    def restore(self, snapshot: CamMemory) -> None:
+        """Put back the memory and modified table of ``snapshot`` (a `copy()`): undoes a line
+        whose data could not be stored. The valid copy stays: only VF changes it."""
+        self._ram = list(snapshot._ram)
+        self._modified = list(snapshot._modified)
+        self._overflow = snapshot._overflow
+
     # -- persistence -------------------------------------------------------------------------
 
     _FILE_FORMAT = "axisline-compax-cam-memory"
@@ -547,6 +554,9 @@ class CamMemory:
                 document = json.load(file)
         except json.JSONDecodeError as exc:
             raise CompaxError(f"{name}: not a cam memory file ({exc})", field="file", value=name) from None
+        except UnicodeDecodeError as exc:  # a ValueError: the caller expects CompaxError for a bad file
+            raise CompaxError(f"{name}: not a cam memory file (not UTF-8 text: byte 0x{exc.object[exc.start]:02x} "
+                              f"at position {exc.start})", field="file", value=name) from None
         if not isinstance(document, dict) or document.get("format") != cls._FILE_FORMAT:
             raise CompaxError(f"{name}: not a cam memory file (format must be {cls._FILE_FORMAT!r})",
                               field="format", value=name)

@@ -494,6 +494,24 @@ class Parameters:
         self._armed.clear()
         self._unsent.clear()
 
+    def snapshot(self) -> Parameters:
+        """A copy of the written, armed and valid values, for `restore`."""
+        other = Parameters.__new__(Parameters)
+        other._written, other._valid, other._armed = dict(self._written), dict(self._valid), dict(self._armed)
+        other._unsent, other._synchronous = set(self._unsent), self._synchronous
+        other.valid, other.written = _View(other._valid), _View(other._written)
+        return other
+
+    def restore(self, snapshot: Parameters) -> None:
+        """Put back the values of ``snapshot`` in place (undoes a line whose data could not be
+        stored); O16 (`synchronous`) is the cam operation's and stays."""
+        for mine, theirs in ((self._written, snapshot._written), (self._valid, snapshot._valid),
+                             (self._armed, snapshot._armed)):
+            mine.clear()
+            mine.update(theirs)
+        self._unsent.clear()
+        self._unsent.update(snapshot._unsent)
+
     # -- synchronous operation (P35 triggered transfer) --------------------------------------
 
     @property

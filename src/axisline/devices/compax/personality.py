@@ -44,6 +44,14 @@ parameters, VF, VP, RESETF, SETC, LOOP, ...) is refused with the device's error 
 (``!E104`` for memory and parameters, ``!E107`` for commands) unless the operator enabled
 network writes (``serve --allow-writes``); a refused or wrong line changes nothing.
 
+What the interface acknowledges is stored, as the device keeps its Zero-Power-RAM and
+parameters through a power cut: a line that changes the cam memory (F/I/B<address>=...,
+RESETF) or the written parameters (P<n>=..., RESETP) is saved to memory_file /
+parameter_file (atomic write, fsync, rename) before its reply goes out, so a kill -9 right
+after the reply keeps it. A save that fails is undone and answered ``!E108`` (S30 = 108).
+Both files must be writable when the machine file is checked, and a save's temporary file
+left by a kill is removed at the next `serve` (`store_paths`).
+
 Scope channels come from `trace_channels()` (the machine adds them with its own: all of them
 with trace.channels = "all", or those named): compax.S44, S45, S52 (per mille), O14 ... O16,
 state, A0 / A1 (V). The label records come from the public `LabelSync.on_label` hook and
@@ -70,9 +78,9 @@ from typing import Annotated, Any, Callable, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, field_validator, model_validator
 
-from axisline.configerrors import ConfigError
+from axisline.configerrors import ConfigError, FilePath
 from axisline.devices.base import Personality
-from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, CompaxError
+from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, E_STORE, CompaxError
 from axisline.devices.compax.ascii import MAX_LINE, AsciiEndpoint
 from axisline.devices.compax.cammemory import MAX_CURVES, MAX_POINTS_PER_CURVE, CamMemory
 from axisline.devices.compax.camop import CamOperation, CamState, analog_volts
@@ -90,6 +98,7 @@ from axisline.devices.compax.parameters import PARAMETERS, Parameters
 from axisline.devices.compax.report import CycleLog, converged_after, write_report
 from axisline.devices.compax.status import StatusValues, format_status
 from axisline.kernel import atomic_write_text
+from axisline.kernel.atomic import unwritable_reason
 from axisline.motion.axis import AxisState
 
 __all__ = [
@@ -127,6 +136,8 @@ _PROGRAM_LINES = tuple(
 _MOTION = re.compile(r"LOOP|LP|POSRCAM|PR")
 # writes of the ASCII interface (refused from the network unless writes are enabled)
 _DATA_WRITE = re.compile(r"[IFB]\d+=.*|P\d+=.*")
+# lines that change what the device keeps through a power cut (saved before the reply)
+_STORING = re.compile(r"[IFB]\d+=.*|P\d+=.*|RESETF|RESETP")
 _COMMAND = re.compile(r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR|POSAHOME|(SETC|SC|SETM|SM|LOOP|LP).+")
 _STATUS_READ = re.compile(r"S(\d+)")
 
@@ -154,7 +165,7 @@ class CurveEntry(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     number: int = Field(ge=1, le=MAX_CURVES, description="curve number n (SETC n); curves are numbered 1, 2, ... without gaps")
-    csv: str | None = Field(
+    csv: FilePath = Field(
         None, min_length=1, max_length=4096,
         description="a master,slave CSV (slave in units), relative to the machine file; equidistant, or give points to resample",
     )
@@ -209,11 +220,11 @@ class CompaxConfig(BaseModel):
         "internal",
         description="master encoder: a [[master]] name (wheel, axis_encoder, ...), an axis with an [axis.encoder], or internal (time base)",
     )
-    memory_file: str | None = Field(
+    memory_file: FilePath = Field(
         None, min_length=1, max_length=4096,
         description="cam memory file (JSON, relative to the machine file): loaded at start if present, saved by persist(); none: not kept",
     )
-    parameter_file: str | None = Field(
+    parameter_file: FilePath = Field(
         None, min_length=1, max_length=4096,
         description="parameter file (JSON): loaded at start if present instead of device.parameters, saved by persist()",
     )
@@ -297,6 +308,8 @@ def load_parameters(path: str | Path) -> Parameters:
             doc = json.load(f)
     except json.JSONDecodeError as e:
         raise CompaxError(f"{name}: not a parameter file ({e})") from None
+    except UnicodeDecodeError as e:  # a ValueError: the caller expects CompaxError for a bad file
+        raise CompaxError(f"{name}: not a parameter file (not UTF-8 text: byte 0x{e.object[e.start]:02x} at position {e.start})") from None
     if not isinstance(doc, dict) or doc.get("format") != _PARAM_FILE_FORMAT or doc.get("version") != 1:
         raise CompaxError(f"{name}: not a parameter file (format {_PARAM_FILE_FORMAT!r}, version 1)")
     written = doc.get("written")
@@ -333,9 +346,12 @@ class CompaxEndpoint(AsciiEndpoint):
     """The ASCII interface with the operator's write enable (see the module docstring)."""
 
     def __init__(self, memory: CamMemory, parameters: Parameters, commands: Any, status: StatusValues,
-                 writes_allowed: Callable[[], bool]) -> None:
+                 writes_allowed: Callable[[], bool],
+                 store: Callable[[CamMemory, Parameters], None] | None = None) -> None:
         super().__init__(memory, parameters, commands, status)
         self._writes_allowed = writes_allowed
+        #: saves what a line changed (given the state before it); None: nothing is kept
+        self._store = store
 
     def _dispatch(self, text: str) -> str:
         line = "".join(text.split()).upper()
@@ -345,14 +361,25 @@ class CompaxEndpoint(AsciiEndpoint):
             return f"S{number:03d}={format_status(self.status.read(number, self.parameters))}"
         if not self._writes_allowed():
             if _DATA_WRITE.fullmatch(line):
-                raise CompaxError(f"{text.strip()!r} refused: writes from the network are not enabled "
-                                  "(the operator enables them: axisline serve --allow-writes)",
+                # short enough that the hint survives the error reply's length limit
+                raise CompaxError(f"{line!r} refused: network writes are off (serve --allow-writes)",
                                   code=E_RESERVED, field="line", value=text)
             if _COMMAND.fullmatch(line):
-                raise CompaxError(f"{text.strip()!r} refused: commands from the network are not enabled "
-                                  "(the operator enables them: axisline serve --allow-writes)",
+                raise CompaxError(f"{line!r} refused: network commands are off (serve --allow-writes)",
                                   code=E_NOT_AVAILABLE, field="line", value=text)
-        return super()._dispatch(text)
+        if self._store is None or not _STORING.fullmatch(line):
+            return super()._dispatch(text)
+        memory, params = self.memory.copy(), self.parameters.snapshot()
+        body = super()._dispatch(text)
+        try:
+            self._store(memory, params)
+        except OSError as e:
+            # the host must not take an unsaved change for a stored one: undo it, say why
+            self.memory.restore(memory)
+            self.parameters.restore(params)
+            raise CompaxError(f"{line!r} not stored ({e.strerror or e}); nothing changed", code=E_STORE,
+                              field="line", value=text) from None
+        return body
 
 
 # ---------------------------------------------------------------------------------------
@@ -395,6 +422,14 @@ class CompaxPersonality(Personality):
                 problems.append(f"device.outputs.{name} = {value!r}: no such io output (outputs: {', '.join(mc.io.outputs) or 'none'})")
         self.memory_path = self._path(config.memory_file)
         self.parameter_path = self._path(config.parameter_file)
+        for key, name, path in (("memory_file", config.memory_file, self.memory_path),
+                                ("parameter_file", config.parameter_file, self.parameter_path)):
+            reason = unwritable_reason(path) if path is not None else None
+            if reason is not None:  # persist() and every stored line write it: refuse it now, not at run time
+                problems.append(f"device.{key} = {name!r}: {path} {reason}")
+        if self.memory_path is not None and self.memory_path == self.parameter_path:
+            problems.append(f"device.parameter_file = {config.parameter_file!r}: the same file as device.memory_file "
+                            "(each save would overwrite the other)")
         self.memory = self._memory(config, problems)
         self.params = self._parameters(config, counts_per_unit, preferred_p98, problems)
         if problems:
@@ -467,7 +502,7 @@ class CompaxPersonality(Personality):
     def _memory(self, config: CompaxConfig, problems: list[str]) -> CamMemory | None:
         """The cam memory: the saved file (power on), else the delivery state plus the configured curves."""
         path = self.memory_path
-        if path is not None and path.exists():
+        if path is not None and path.exists() and not path.is_dir():  # a directory: named by the path check
             try:
                 return CamMemory.load(path)
             except (CompaxError, OSError) as e:
@@ -505,7 +540,7 @@ class CompaxPersonality(Personality):
     def _parameters(self, config: CompaxConfig, counts_per_unit: float | None, preferred_p98: float | None,
                     problems: list[str]) -> Parameters | None:
         path = self.parameter_path
-        if path is not None and path.exists():
+        if path is not None and path.exists() and not path.is_dir():  # a directory: named by the path check
             try:
                 return load_parameters(path)
             except (CompaxError, OSError) as e:
@@ -679,9 +714,22 @@ class CompaxPersonality(Personality):
     # ------------------------------------------------------------------ Personality API
 
     def byte_endpoint(self) -> CompaxEndpoint:
-        """The ASCII interface (a new line buffer per transport; memory, parameters and
-        status are this device's). Writes need `network_writes`."""
-        return CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: self.network_writes)
+        """The ASCII interface (memory, parameters and status are this device's; each
+        connection takes its own line buffer with `.session()`). Writes need `network_writes`."""
+        return CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: self.network_writes,
+                              store=self._store_line)
+
+    def _store_line(self, memory_before: CamMemory, params_before: Parameters) -> None:
+        """Save what one interface line changed, before its reply (see the module docstring)."""
+        if self.memory_path is not None and self.memory.words() != memory_before.words():
+            self.memory_path.parent.mkdir(parents=True, exist_ok=True)
+            self.memory.save(self.memory_path)
+        if self.parameter_path is not None and dict(self.params.written) != dict(params_before.written):
+            self.parameter_path.parent.mkdir(parents=True, exist_ok=True)
+            save_parameters(self.params, self.parameter_path)
+
+    def store_paths(self) -> list[Path]:
+        return [p for p in (self.memory_path, self.parameter_path) if p is not None]
 
     def persist(self) -> list[Path]:
         """Save the cam memory (and the parameters, with parameter_file) atomically."""

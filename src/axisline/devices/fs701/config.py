@@ -11,6 +11,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
 
+from axisline.configerrors import FilePath
+
 from .loop import LEAD_MAX_MS
 from .parameters import ParameterSet
 
@@ -61,13 +63,13 @@ class Fs701Config(BaseModel):
     printmark_sensor: str | None = Field(
         None, min_length=1, max_length=64, description="the print-mark sensor (a [[marks]] name) on In15, for Cutting Mode 2/3"
     )
-    parameter_file: str | None = Field(
+    parameter_file: FilePath = Field(
         None, min_length=1, max_length=4096, description="FS701 parameter set file (TOML, paramfile.py), relative to the machine file"
     )
     parameters: dict[str, int | float] = Field(
         default_factory=dict, description="parameter values by snake_case name in engineering units (after the file), e.g. cutting_length = 1000"
     )
-    save_parameters: str | None = Field(
+    save_parameters: FilePath = Field(
         None, min_length=1, max_length=4096,
         description="persist() and 'Store to EEProm' write the parameter set here (relative to the machine file); none: never written",
     )

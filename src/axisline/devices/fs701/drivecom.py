@@ -40,7 +40,9 @@ Examples (unit address 11, factory default)::
                                                                        EOT "11" STX "0105" "-125" ETX BCC
     reply:                            06                                ACK
 
-`DrivecomEndpoint.feed(bytes) -> bytes` frames a byte stream as a unit on an RS485 bus does:
+`DrivecomEndpoint.session().feed(bytes) -> bytes` frames a byte stream as a unit on an RS485 bus
+does (one session per connection: one client's unfinished telegram never frames another's bytes;
+`DrivecomEndpoint.feed` is the endpoint's own session):
 
 * telegrams may arrive in pieces over several calls; several may arrive in one call;
 * bytes outside a telegram (line noise, replies of other units) are skipped up to the next EOT;
@@ -108,6 +110,7 @@ __all__ = [
     "Reply",
     "parse_reply",
     "DrivecomEndpoint",
+    "DrivecomSession",
     "DrivecomClient",
 ]
 
@@ -216,7 +219,11 @@ _IDLE, _ADDR, _KIND, _READ, _WRITE, _BCC = range(6)
 
 
 class DrivecomEndpoint:
-    """One FS701 on a Drivecom bus: bytes in, reply bytes out (see module doc)."""
+    """One FS701 on a Drivecom bus: bytes in, reply bytes out (see module doc).
+
+    The unit (address, register map, counters) is one; every connection frames its own
+    telegrams in a `session()`. `feed` and `reset` are the endpoint's own session, for
+    in-process callers."""
 
     def __init__(
         self,
@@ -233,11 +240,105 @@ class DrivecomEndpoint:
         self.telegrams = 0  # complete telegrams for this unit (incl. refused ones)
         self.naks = 0
         self.ignored = 0  # telegrams for other units
-        self.reset()
+        self._session = DrivecomSession(self)
 
     @property
     def address(self) -> int:
         return self._address if self._address is not None else self.regmap.params.get_raw("ser_unit_address")
+
+    def session(self) -> "DrivecomSession":
+        """A telegram parser of its own for one connection (see `DrivecomSession`)."""
+        return DrivecomSession(self)
+
+    def reset(self) -> None:
+        """Drop a partial telegram (call after an inter-character time-out)."""
+        self._session.reset()
+
+    def feed(self, data: bytes) -> bytes:
+        return self._session.feed(data)
+
+    # ---- addressing -------------------------------------------------------------------------
+    def _addressed(self, a: bytes) -> str:
+        """"unit", "broadcast" or "" (another unit) for the address field `a`."""
+        own = f"{self.address:02d}".encode("ascii")
+        if a == own:
+            return "unit"
+        if (a[0:1] == b"0" or a[0] == own[0]) and (a[1:2] == b"0" or a[1] == own[1]) and b"0" in a:
+            return "broadcast"
+        return ""
+
+    def _malformed(self, addr: bytes, out: bytearray) -> None:
+        target = self._addressed(addr)
+        if target == "unit":
+            self.telegrams += 1
+            self._nak(out)
+        elif not target:
+            self.ignored += 1
+
+    def _nak(self, out: bytearray) -> None:
+        self.naks += 1
+        out.append(NAK)
+
+    # ---- telegrams --------------------------------------------------------------------------
+    def _finish_read(self, addr: bytes, code_field: bytes, out: bytearray) -> None:
+        target = self._addressed(addr)
+        if target != "unit":  # other unit, or a broadcast read nobody may answer
+            self.ignored += target == ""
+            return
+        self.telegrams += 1
+        if len(code_field) != CODE_CHARS:
+            self._nak(out)
+            return
+        code = int(code_field, 16)
+        try:
+            text = self.regmap.read_text(code)
+        except RegisterError:
+            self._nak(out)
+            return
+        out += build_reply(code, text)
+
+    def _finish_write(self, addr: bytes, body: bytes, check: int, out: bytearray) -> None:
+        """`body`: C1 C2 data ETX; `check`: the BCC received."""
+        target = self._addressed(addr)
+        if not target:
+            self.ignored += 1
+            return
+        reply = target == "unit"
+        if reply:
+            self.telegrams += 1
+        ok = (
+            bcc(body) == check
+            and len(body) > CODE_CHARS + 1
+            and len(body) - CODE_CHARS - 1 <= MAX_DATA
+            and set(body[:CODE_CHARS]) <= _HEX
+        )
+        if ok:
+            allowed = self.writes_allowed() if callable(self.writes_allowed) else self.writes_allowed
+            ok = bool(allowed)
+        if ok:
+            code = int(body[:CODE_CHARS], 16)
+            try:
+                register(code)
+                self.regmap.write_text(code, body[CODE_CHARS:-1].decode("ascii"))
+            except RegisterError:
+                ok = False
+        if reply:
+            if ok:
+                out.append(ACK)
+            else:
+                self._nak(out)
+
+
+class DrivecomSession:
+    """One connection's telegram framing on a `DrivecomEndpoint`: ``feed(bytes) -> bytes``.
+
+    Its own state, so a telegram one client leaves unfinished dies with its connection: a
+    write cut off before its BCC would otherwise take the next client's EOT as that BCC and
+    swallow the read request behind it."""
+
+    def __init__(self, endpoint: DrivecomEndpoint) -> None:
+        self.endpoint = endpoint
+        self.reset()
 
     def reset(self) -> None:
         """Drop a partial telegram (call after an inter-character time-out)."""
@@ -245,7 +346,6 @@ class DrivecomEndpoint:
         self._buf = bytearray()  # address, then code (+ data)
         self._addr = b""
 
-    # ---- framing ----------------------------------------------------------------------------
     def feed(self, data: bytes) -> bytes:
         out = bytearray()
         for b in data:
@@ -256,7 +356,7 @@ class DrivecomEndpoint:
         state = self._state
         if state == _BCC:
             self._state = _IDLE
-            self._finish_write(b, out)
+            self.endpoint._finish_write(self._addr, bytes(self._buf), b, out)
             return
         if b == EOT:  # start of a telegram; abandons one in progress
             self._state, self._buf, self._addr = _ADDR, bytearray(), b""
@@ -281,7 +381,7 @@ class DrivecomEndpoint:
         if state == _READ:
             if b == ENQ:
                 self._state = _IDLE
-                self._finish_read(out)
+                self.endpoint._finish_read(self._addr, bytes(self._buf), out)
                 return
             if len(self._buf) >= CODE_CHARS or b not in _HEX:
                 self._malformed(out)
@@ -298,78 +398,9 @@ class DrivecomEndpoint:
             return
         self._buf.append(b)
 
-    # ---- addressing -------------------------------------------------------------------------
-    def _addressed(self) -> str:
-        """"unit", "broadcast" or "" (another unit)."""
-        own = f"{self.address:02d}".encode("ascii")
-        a = self._addr
-        if a == own:
-            return "unit"
-        if (a[0:1] == b"0" or a[0] == own[0]) and (a[1:2] == b"0" or a[1] == own[1]) and b"0" in a:
-            return "broadcast"
-        return ""
-
     def _malformed(self, out: bytearray) -> None:
         self._state = _IDLE
-        target = self._addressed()
-        if target == "unit":
-            self.telegrams += 1
-            self._nak(out)
-        elif not target:
-            self.ignored += 1
-
-    def _nak(self, out: bytearray) -> None:
-        self.naks += 1
-        out.append(NAK)
-
-    # ---- telegrams --------------------------------------------------------------------------
-    def _finish_read(self, out: bytearray) -> None:
-        target = self._addressed()
-        if target != "unit":  # other unit, or a broadcast read nobody may answer
-            self.ignored += target == ""
-            return
-        self.telegrams += 1
-        if len(self._buf) != CODE_CHARS:
-            self._nak(out)
-            return
-        code = int(self._buf, 16)
-        try:
-            text = self.regmap.read_text(code)
-        except RegisterError:
-            self._nak(out)
-            return
-        out += build_reply(code, text)
-
-    def _finish_write(self, check: int, out: bytearray) -> None:
-        target = self._addressed()
-        if not target:
-            self.ignored += 1
-            return
-        reply = target == "unit"
-        if reply:
-            self.telegrams += 1
-        body = bytes(self._buf)  # C1 C2 data ETX
-        ok = (
-            bcc(body) == check
-            and len(body) > CODE_CHARS + 1
-            and len(body) - CODE_CHARS - 1 <= MAX_DATA
-            and set(body[:CODE_CHARS]) <= _HEX
-        )
-        if ok:
-            allowed = self.writes_allowed() if callable(self.writes_allowed) else self.writes_allowed
-            ok = bool(allowed)
-        if ok:
-            code = int(body[:CODE_CHARS], 16)
-            try:
-                register(code)
-                self.regmap.write_text(code, body[CODE_CHARS:-1].decode("ascii"))
-            except RegisterError:
-                ok = False
-        if reply:
-            if ok:
-                out.append(ACK)
-            else:
-                self._nak(out)
+        self.endpoint._malformed(self._addr, out)
 
 
 # --------------------------------------------------------------------------------------------

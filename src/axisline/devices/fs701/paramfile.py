@@ -153,8 +153,10 @@ def save_parameters(
     comment: str = "",
     only_changed: bool = False,
 ) -> Path:
-    """Write a parameter file atomically (the old file stays whole if anything fails)."""
+    """Write a parameter file atomically (the old file stays whole if anything fails);
+    missing directories are created, as `axisline check` takes them for writable."""
     text = format_parameter_file(params, io, comment=comment, only_changed=only_changed)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
     atomic_write_text(path, text)
     return Path(path)
 

@@ -79,7 +79,12 @@ Decisions:
     (at a cycle boundary), not every cycle.
  D6 persist() (serve's shutdown) writes the live parameter set, counters and I/O assignment to
     `save_parameters` (atomically); "Store to EEProm" (command bit 29) writes the EEPROM image
-    there at once. Without `save_parameters` nothing is written.
+    there at once, before the write that set the bit is acknowledged (a kill -9 after the ACK
+    keeps it, as the EEPROM keeps it through a power cut). A file that cannot be written is
+    refused by the check, and at run time the store is refused (NAK, Modbus exception 4; from a
+    hardware input a run fault) with the EEPROM image left as it was. Parameters written over
+    the interfaces without a store stay in RAM, as on the unit. Without `save_parameters`
+    nothing is written.
  D7 FS701 errors (02 cut not possible, 03 limit, 04 print-mark buffer, 05 encoder ratio) are run
     faults (exit 1), and so is a piece out of its tolerance unless `tolerance_fault = false`.
 """
@@ -97,9 +102,10 @@ from mypy_extensions import mypyc_attr
 
 from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
+from axisline.kernel.atomic import unwritable_reason
 
 from .cutter import _WASTE, CutInfo, CutKind, Cutter, CutState, CutterInputs, CutterSettings
-from .drivecom import DrivecomEndpoint
+from .drivecom import DrivecomEndpoint, DrivecomSession
 from .io_assign import (
     HW_INPUTS,
     HW_OUTPUTS,
@@ -116,7 +122,7 @@ from .line import BatchJob, CommissioningReport, CutMeasurement, CutMeter, Shear
 from .loop import cycle_test, direction_check, tune_gain, tune_lead, tune_offset
 from .parameters import ParameterError, ParameterSet, parameter
 from .paramfile import ParamFileError, load_parameter_file, save_parameters
-from .registers import RegisterMap, modbus_read, modbus_write, ModbusError
+from .registers import CommandRefusedError, RegisterError, RegisterMap, modbus_read, modbus_write, ModbusError
 from .status import COUNTER_MIRRORS, ERRORS, PROCESS_BASE, ClearReason, StatusImage
 
 __all__ = ["Fs701Config", "ShearConfig", "Fs701Personality", "DEFAULT_INPUTS"]
@@ -158,6 +164,22 @@ class _DrivecomPort:
         self.device.refresh_status()
         return self.endpoint.feed(data)
 
+    def session(self) -> "_DrivecomSession":
+        """One connection's telegram framing on this unit (serial_tcp: one per client)."""
+        return _DrivecomSession(self.device, self.endpoint.session())
+
+
+class _DrivecomSession:
+    """A connection's Drivecom session, with the status image refreshed before each chunk (D5)."""
+
+    def __init__(self, device: "Fs701Personality", framing: DrivecomSession) -> None:
+        self.device = device
+        self.framing = framing
+
+    def feed(self, data: bytes) -> bytes:
+        self.device.refresh_status()
+        return self.framing.feed(data)
+
 
 class _ModbusPort:
     """The register map as Modbus holding (and input) registers; refusals as RegisterRefused."""
@@ -177,8 +199,8 @@ class _ModbusPort:
         self.device.refresh_status()
         try:
             return modbus_read(self.device.registers, address, count)
-        except ModbusError as e:
-            raise RegisterRefused(str(e)) from None
+        except ModbusError as e:  # the register map's own exception code: 2, 3 or 4
+            raise RegisterRefused(str(e), e.exception_code) from None
 
     def write_registers(self, address: int, values: list[int]) -> None:
         from axisline.fieldbus.modbus import RegisterRefused
@@ -187,8 +209,8 @@ class _ModbusPort:
             raise RegisterRefused("writes from the network are not enabled (serve --allow-writes)")
         try:
             modbus_write(self.device.registers, address, values)
-        except ModbusError as e:
-            raise RegisterRefused(str(e)) from None
+        except ModbusError as e:  # e.g. 4 when "Store to EEProm" cannot be written
+            raise RegisterRefused(str(e), e.exception_code) from None
 
 
 # a Python class also when compiled: it subclasses Personality, which stays interpreted
@@ -233,6 +255,11 @@ class Fs701Personality(Personality):
                 problems.append(f"device.parameters.{key} = {value!r}: {e}")
         self.params = params
         self._check_scales = len(problems) == n_before  # (a set that did not load says nothing)
+        if config.save_parameters is not None:
+            save_path = self._path(config.save_parameters)
+            reason = unwritable_reason(save_path)
+            if reason is not None:  # Store to EEProm writes it at run time: refuse it now
+                problems.append(f"device.save_parameters = {config.save_parameters!r}: {save_path} {reason}")
 
         # ---- the carriage (Encoder 2, Ana-Out 2)
         unit = machine.units.get(config.carriage)
@@ -599,7 +626,10 @@ class Fs701Personality(Personality):
         # the register service reacts to edges of All Commands only: skipped when neither the
         # hardware word nor All Commands changed since its last call
         if reg.needs_service(hw):
-            reg.set_hardware_commands(hw)
+            try:
+                reg.set_hardware_commands(hw)
+            except RegisterError as e:  # Store to EEProm from an input failed: no reply carries it
+                self.machine.faults.append(f"t={cycle * self.period:.4f} s fs701: {e}")
         word = reg.status.all_commands
         if word & (_BIT_ADJUST | _BIT_TEST) or self._program_word:
             self._service_programs(cycle, word)
@@ -818,8 +848,15 @@ class Fs701Personality(Personality):
     def _stored(self, image: Any) -> None:
         """"Store to EEProm" (bit 29): the EEPROM image goes to the parameter file at once (D6)."""
         if self.config.save_parameters is not None:
-            save_parameters(self._path(self.config.save_parameters), image.params, image.io,
-                            comment="FS701 EEPROM image (Store to EEProm)")
+            path = self._path(self.config.save_parameters)
+            try:
+                save_parameters(path, image.params, image.io, comment="FS701 EEPROM image (Store to EEProm)")
+            except OSError as e:
+                # refused like any register write (NAK, Modbus exception 4): the EEPROM keeps the old set
+                raise CommandRefusedError(0x091D, f"Store to EEProm: {path} cannot be written: {e.strerror or e}") from None
+
+    def store_paths(self) -> list[Path]:
+        return [self._path(self.config.save_parameters)] if self.config.save_parameters is not None else []
 
     def persist(self) -> list[Path]:
         if self.config.save_parameters is None:

@@ -450,15 +450,42 @@ class RegisterMap:
         self.write(code, parse_wire(reg, text))
 
     def write_many(self, values: Iterable[tuple[int, object]]) -> None:
-        """Write several raw values ("Transmit All"); all are checked before any is stored."""
-        items = list(values)
+        """Write several raw values ("Transmit All", a Modbus FC16) as one: the state they
+        produce together is checked before any is stored, so a refused write changes nothing.
+
+        Command bits (0x0900 + n) and Serial Commands (0x0B01) are folded into the one word
+        they produce, and that word is checked (Adjust/Test Program need Control Enable OFF
+        and exclude each other): checked one by one, an Adjust bit written before a refused
+        Test bit was already set, and the Adjust program started. Parameters are stored first,
+        then the word, with one service() for its edges (a Store to EEProm in the same write
+        stores the new parameters)."""
         probe_params = self.params.copy()
-        for code, raw in items:
-            reg, value = self._checked(code, raw)
+        params: list[tuple[int, int]] = []
+        word = self.status.serial_commands
+        word_reg: Register | None = None  # the last register that changed the word (for errors)
+        for code, raw in values:
+            reg = register(code)
+            if not reg.writable:
+                raise ReadOnlyRegisterError(code, f"{reg.name} (0x{code:04X}) is read only")
+            value = _check_range(reg, raw)
             if reg.kind == RegisterKind.PARAMETER:
                 probe_params.set_raw(code, value)
-        for code, raw in items:
-            self.write(code, raw)
+                params.append((code, value))
+            elif reg.kind == RegisterKind.COMMAND:
+                bit = 1 << (code - COMMAND_BASE)
+                word = word | bit if value else word & ~bit
+                word_reg = reg
+            elif reg.kind == RegisterKind.STATUS:  # 0x0B01
+                word = value
+                word_reg = reg
+            # reserved parameters: 0 accepted, nothing stored
+        if word_reg is not None:
+            self._check_serial_word(word, word_reg)
+        for code, value in params:
+            self.params.set_raw(code, value)
+        if word_reg is not None:
+            self.status.serial_commands = word
+            self.service()
 
     def _with_bit(self, bit: int, on: int) -> int:
         word = self.status.serial_commands
@@ -502,12 +529,12 @@ class RegisterMap:
         """Register-side reactions to edges of All Commands since the last call:
         Store to EEProm (rising), Clear Error (rising), Control Enable (falling)."""
         edges = self._edges.update(self.status.all_commands)
-        if edges.rising & _BIT_STORE:
-            self.store_to_eeprom()
         if edges.rising & _BIT_CLEAR:
             self.status.clear_errors(ClearReason.CLEAR_ERROR)
         if edges.falling & _BIT_CE:
             self.status.clear_errors(ClearReason.CONTROL_ENABLE_OFF)
+        if edges.rising & _BIT_STORE:  # last: a store that fails raises, the other edges are applied
+            self.store_to_eeprom()
         return edges
 
     def set_io_assignment(self, io: IOAssignment) -> None:
@@ -517,10 +544,17 @@ class RegisterMap:
         self.eeprom = EepromImage(self.eeprom.params, self.io.copy())
 
     def store_to_eeprom(self) -> None:
+        """Copy parameters and I/O assignment to the EEPROM image; `on_store` persists it. A
+        callback that raises (the file cannot be written) leaves the previous image."""
+        previous = self.eeprom
         self.eeprom = EepromImage(self.params.copy(), self.io.copy())
+        try:
+            for callback in self.on_store:
+                callback(self.eeprom)
+        except BaseException:
+            self.eeprom = previous
+            raise
         self.store_count += 1
-        for callback in self.on_store:
-            callback(self.eeprom)
 
     def power_cycle(self) -> None:
         """Power off/on: parameters and I/O assignment from the EEPROM, status reset."""

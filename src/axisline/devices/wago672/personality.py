@@ -44,13 +44,14 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 
-from axisline.configerrors import ConfigError
+from axisline.configerrors import ConfigError, FilePath
 from axisline.devices.base import Personality
 from axisline.devices.wago672.config_table import ConfigTable, ConfigValueError
 from axisline.devices.wago672.coupler import MAX_MODULES, Coupler
 from axisline.devices.wago672.device import Wago672
 from axisline.devices.wago672.image import MODE_NAMES, InputImage
 from axisline.devices.wago672.mailbox import attach
+from axisline.kernel.atomic import unwritable_reason
 
 __all__ = ["ModuleEntry", "Wago672Config", "Wago672Personality"]
 
@@ -74,7 +75,7 @@ class ModuleEntry(BaseModel):
     config: dict[str, int] = Field(
         default_factory=dict, description="configuration-table values by the manual's names (e.g. SetupSpeed = 5000): the FACTORY_DEFAULT"
     )
-    eeprom: str | None = Field(
+    eeprom: FilePath = Field(
         None, min_length=1, max_length=4096,
         description="EEPROM image file (JSON, relative to the machine file); none: the EEPROM lasts as long as the run",
     )
@@ -119,6 +120,7 @@ class Wago672Personality(Personality):
             problems.append(f"machine.logic_every = {mc.machine.logic_every}: the 750-672 ticks every cycle (allowed: 1)")
         signals = sorted(set(machine.sensors) | set(mc.io.inputs))
         used: dict[str, int] = {}
+        eeproms: dict[Path, int] = {}
         self.modules: list[_Module] = []
         for i, entry in enumerate(config.modules):
             where = f"device.modules[{i}]"
@@ -146,15 +148,21 @@ class Wago672Personality(Personality):
                 problems.append(f"{where}.config: {e.args[0]}")
             except ConfigValueError as e:
                 problems.append(f"{where}.config: {e}")
-            if problems or unit is None:
-                continue  # build nothing once something is wrong: the ConfigError below names it all
-            wiring = {name: self._signal(value) for name, value in entry.inputs.items()}
-            device = Wago672(unit.axis, wiring, table)
             eeprom = None
             if entry.eeprom is not None:
                 eeprom = Path(entry.eeprom)
                 if not eeprom.is_absolute() and getattr(machine, "source", ""):
                     eeprom = Path(machine.source).parent / eeprom
+                reason = unwritable_reason(eeprom)
+                if reason is not None:  # the module writes it whenever it stores: refuse it now, not at run time
+                    problems.append(f"{where}.eeprom = {entry.eeprom!r}: {eeprom} {reason}")
+                if eeprom in eeproms:
+                    problems.append(f"{where}.eeprom = {entry.eeprom!r}: also the EEPROM of device.modules[{eeproms[eeprom]}]")
+                eeproms.setdefault(eeprom, i)
+            if problems or unit is None:
+                continue  # build nothing once something is wrong: the ConfigError below names it all
+            wiring = {name: self._signal(value) for name, value in entry.inputs.items()}
+            device = Wago672(unit.axis, wiring, table)
             try:
                 mbx = attach(device, eeprom)  # the power-on: configuration and tables from the EEPROM
             except ValueError as e:
@@ -225,6 +233,9 @@ class Wago672Personality(Personality):
             if tables.path is not None and tables.path.exists():
                 files.append(tables.path)
         return files
+
+    def store_paths(self) -> list[Path]:
+        return [m.mailbox.tables.path for m in self.modules if m.mailbox.tables.path is not None]
 
     def summary(self) -> dict[str, Any]:
         modules = []

@@ -364,6 +364,7 @@ class TableManager:
             "config_user": self.config_user.hex() if self.config_user is not None else None,
             "config_factory": self.config_factory.hex() if self.config_factory is not None else None,
         }
+        self.path.parent.mkdir(parents=True, exist_ok=True)  # as `axisline check` takes missing ones for writable
         atomic_write_text(self.path, json.dumps(obj, indent=1) + "\n")
 
     def _job(self, action: Callable[[], None], copy: bool = False) -> None:
