@@ -77,7 +77,7 @@ import csv
 import math
 import os
 from bisect import bisect_right
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -244,6 +244,15 @@ def _validate_points(
     return tuple(m_out), tuple(s_out)
 
 
+def _csv_rows(reader: Any) -> Iterator[list[str]]:
+    """The reader's rows; csv.Error (a field over csv's size limit, a NUL byte) as ValueError,
+    which is what a caller of `from_csv` handles for a bad file."""
+    try:
+        yield from reader
+    except csv.Error as e:
+        raise ValueError(f"line {reader.line_num}: not a CSV point table ({e})") from None
+
+
 def _read_points_csv(
     path: str | os.PathLike[str], max_points: int
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -253,7 +262,7 @@ def _read_points_csv(
     header_seen = False
     with open(path, encoding="utf-8", newline="") as file:
         reader = csv.reader(file)
-        for row in reader:
+        for row in _csv_rows(reader):
             line = reader.line_num
             if not row or all(not cell.strip() for cell in row):
                 continue  # blank lines (e.g. a trailing one) carry no point

@@ -134,6 +134,9 @@ VF_FULL_DURATION_S = 0.5
 MODIFIED_TABLE_SIZE = 20
 
 
+
+MAX_MEMORY_FILE_BYTES = 4 << 20  # a saved memory (5460 values as JSON) is about 33 kB
+
 class Fmt(str, Enum):
     """Number format letter of an address access (§25)."""
 
@@ -549,14 +552,14 @@ class CamMemory:
     def load(cls, path: str | os.PathLike[str]) -> CamMemory:
         """Power on with a saved memory: everything valid, the modified table empty."""
         name = os.fspath(path)
-        try:
-            with open(path, encoding="utf-8") as file:
-                document = json.load(file)
+        from axisline.configerrors import read_text
+
+        try:  # the size is checked before the file is read
+            document = json.loads(read_text(path, MAX_MEMORY_FILE_BYTES))
         except json.JSONDecodeError as exc:
             raise CompaxError(f"{name}: not a cam memory file ({exc})", field="file", value=name) from None
-        except UnicodeDecodeError as exc:  # a ValueError: the caller expects CompaxError for a bad file
-            raise CompaxError(f"{name}: not a cam memory file (not UTF-8 text: byte 0x{exc.object[exc.start]:02x} "
-                              f"at position {exc.start})", field="file", value=name) from None
+        except (ValueError, RecursionError) as exc:  # too large, not UTF-8, nested too deep
+            raise CompaxError(f"{name}: not a cam memory file ({exc})", field="file", value=name) from None
         if not isinstance(document, dict) or document.get("format") != cls._FILE_FORMAT:
             raise CompaxError(f"{name}: not a cam memory file (format must be {cls._FILE_FORMAT!r})",
                               field="format", value=name)

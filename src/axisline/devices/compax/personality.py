@@ -78,7 +78,7 @@ from typing import Annotated, Any, Callable, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, field_validator, model_validator
 
-from axisline.configerrors import ConfigError, FilePath
+from axisline.configerrors import ConfigError, FilePath, read_text
 from axisline.devices.base import Personality
 from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, E_STORE, CompaxError
 from axisline.devices.compax.ascii import MAX_LINE, AsciiEndpoint
@@ -303,13 +303,12 @@ def save_parameters(params: Parameters, path: str | Path) -> None:
 def load_parameters(path: str | Path) -> Parameters:
     """A parameter file as the device has it after power on: every value written and valid."""
     name = str(path)
-    try:
-        with open(path, encoding="utf-8") as f:
-            doc = json.load(f)
+    try:  # the size is checked before the file is read: a parameter file is a few kB
+        doc = json.loads(read_text(path, 1 << 20))
     except json.JSONDecodeError as e:
         raise CompaxError(f"{name}: not a parameter file ({e})") from None
-    except UnicodeDecodeError as e:  # a ValueError: the caller expects CompaxError for a bad file
-        raise CompaxError(f"{name}: not a parameter file (not UTF-8 text: byte 0x{e.object[e.start]:02x} at position {e.start})") from None
+    except (ValueError, RecursionError) as e:  # too large, not UTF-8, nested too deep
+        raise CompaxError(f"{name}: not a parameter file ({e})") from None
     if not isinstance(doc, dict) or doc.get("format") != _PARAM_FILE_FORMAT or doc.get("version") != 1:
         raise CompaxError(f"{name}: not a parameter file (format {_PARAM_FILE_FORMAT!r}, version 1)")
     written = doc.get("written")

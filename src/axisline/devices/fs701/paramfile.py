@@ -108,6 +108,9 @@ class ParameterFile:
 # writing
 
 
+
+MAX_PARAMETER_FILE_BYTES = 1 << 20  # a parameter file is a few kB; anything far larger is not one
+
 def _toml_str(s: str) -> str:
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
@@ -279,10 +282,12 @@ def _parse_io(value: Any, at: Any, problems: list[str]) -> IOAssignment | None:
 
 def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     """Read and validate a parameter file; raises ParamFileError (nothing is changed anywhere)."""
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParamFileError(str(path), [f"cannot read: {exc}"]) from None
+    from axisline.configerrors import read_text
+
+    try:  # size checked before reading: a parameter file is a few kB
+        text = read_text(path, MAX_PARAMETER_FILE_BYTES)
+    except ValueError as exc:
+        raise ParamFileError(str(path), [str(exc)]) from None
     return parse_parameter_file(text, str(path))
 
 

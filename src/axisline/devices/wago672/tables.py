@@ -126,6 +126,7 @@ from typing import TYPE_CHECKING, Any
 
 from axisline.devices.wago672.config_table import CONF_VERSION, TABLE_SIZE, ConfigValueError
 from axisline.devices.wago672.errors import WagoError
+from axisline.configerrors import read_text
 from axisline.kernel.atomic import atomic_write_text
 from axisline.motion.camswitch import CamTable
 
@@ -342,13 +343,13 @@ class TableManager:
     def _read_eeprom(self) -> None:
         assert self.path is not None
         try:
-            obj = json.loads(self.path.read_text(encoding="utf-8"))
+            obj = json.loads(read_text(self.path, 16 << 20))  # size checked before reading
             if obj.get("format") != _EEPROM_FORMAT or obj.get("version") != 1:
                 raise ValueError("not an axisline 750-672 EEPROM image")
             tables = {TableKind(int(k)): Table.from_json(v) for k, v in obj.get("tables", {}).items()}
             user = bytes.fromhex(obj["config_user"]) if obj.get("config_user") else None
             factory = bytes.fromhex(obj["config_factory"]) if obj.get("config_factory") else None
-        except (OSError, ValueError, KeyError, TypeError) as e:
+        except (OSError, ValueError, KeyError, TypeError, AttributeError, RecursionError) as e:  # not the JSON object we wrote
             raise ValueError(f"EEPROM image {self.path} cannot be read: {e}") from None
         self.eeprom = tables
         self.config_user = user
