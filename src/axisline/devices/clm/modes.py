@@ -1,0 +1,390 @@
+"""The CLM's operating modes, start and stop, faults, and the system inputs and outputs.
+
+Spec §2 (manual §5.4, §5.5, §7.1, §9.1), §6.2, §6.3; errata §3.8 (what each trigger resets).
+
+=====================  ========  =========================================================
+system input           address   what it does here
+=====================  ========  =========================================================
+Parameter Mode         I0.00.0   with Automatic/Manual: the mode; both on is fault 08
+Automatic / Manual     I0.00.1   1 = Automatic
+E-Stop (active low)    I0.00.2   0 = fault 03: drive enables off at once
+Start                  I0.00.3   rising edge in Automatic starts / continues the program
+Immediate Stop (low)   I0.00.4   0 = tasks 1, 2, 4, 5 stop, axes decelerate keeping the rest
+Enable Axis 1-4        I0.00.5, I0.00.6, I0.02.0, I0.02.3  the drive's "motor ready"
+External Clear         I0.00.7   rising edge clears a fault
+Jog + / - axis 1-4     I0.01.0-3, I0.02.1-2, I0.02.4-5 (Manual)
+=====================  ========  =========================================================
+
+Outputs: Q0.00.0 Manual, Q0.00.1 Automatic, Q0.00.2 Parameter, Q0.00.5 Error message (active
+low: 1 = no fault), Q0.01.1 Run Task, Q0.01.5 Inhibit Operation; Q0.00 and Q0.01 are mirrored
+into the status word Q2.00 / Q2.01 (errata §1.19: Q2.00.5 is the mirror of the active-low
+error output). Drive enable and brake outputs belong to the axes (`axis`).
+
+Mode changes (spec §2.2): into Parameter mode every task and the Logic Task stop and the outputs
+and non-retained markers are cleared; out of it the parameters are checked (fault 02 with the
+parameter) and the Logic Task compiled (fault 38) and started. Leaving Automatic stops tasks 1,
+2, 4, 5, clears M2 and resets ACC, FAK, CON and the texts (errata §3.8); the next Start begins
+at 0000 and at the B011/B012 starts. After Immediate Stop, JST or ``!STOP`` the next Start
+continues where the tasks stopped, the axes first finishing their remaining distance; a stop by
+``!STOP`` is continued only by ``!START`` (L7325). A fault stops tasks 1, 2, 4, 5 (Task 3 and
+the Logic Task go on), switches the drives off, clears M2 and the outputs as B018 says; after
+it is cleared the program starts again from 0000.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-TASK-ENABLE, B011/B012 (L3428, L3455: ``0200 0000 0`` enables Task 2 at 0200, ``0000 0800
+   0`` Task 3 at 0800): a start instruction 0000 means the task is off (Task 1 owns 0000).
+   Test: ``tests/devices/clm/test_runtime.py::test_tasks_2_and_3_start_at_b011``.
+2. C-FAULT-FIRST: while a fault is present a second one does not replace it (the display and
+   Status 53 show the cause, not a consequence). Test: ``test_first_fault_is_kept``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .errors import ClmError, axis_fault
+from .operands import Operand
+
+if TYPE_CHECKING:
+    from .nc import NcTask
+    from .runtime import ClmRuntime
+
+__all__ = ["ModeMachine"]
+
+
+def _i(text: str) -> Operand:
+    area, rest = text[0], text[1:].split(".")
+    return Operand(area, int(rest[0]), int(rest[1]), int(rest[2]) if len(rest) > 2 else None)
+
+
+PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR = (_i(t) for t in ("I0.00.0", "I0.00.1", "I0.00.2", "I0.00.3", "I0.00.4", "I0.00.7"))
+ENABLE = {1: _i("I0.00.5"), 2: _i("I0.00.6"), 3: _i("I0.02.0"), 4: _i("I0.02.3")}
+JOG = {1: (_i("I0.01.0"), _i("I0.01.1")), 2: (_i("I0.01.2"), _i("I0.01.3")), 3: (_i("I0.02.1"), _i("I0.02.2")), 4: (_i("I0.02.4"), _i("I0.02.5"))}
+Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_INHIBIT = (_i(t) for t in ("Q0.00.0", "Q0.00.1", "Q0.00.2", "Q0.00.5", "Q0.01.1", "Q0.01.5"))
+_Q0 = (Operand("Q", 0, 0), Operand("Q", 0, 1))
+_STATUS_WORD = (Operand("Q", 2, 0), Operand("Q", 2, 1))
+
+
+class ModeMachine:
+    def __init__(self, rt: ClmRuntime) -> None:
+        self.rt = rt
+        self.mode = "power-on"
+        self.fault_error: ClmError | None = None
+        self.running = False  # Automatic, started, not stopped (Run Task)
+        self.restart_from_zero = True
+        self.interface_stopped = False
+        self.manual_vector = False
+        self._pending_interrupt = False
+        self._previous: dict[Operand, int] = {}
+        self.enabled_axes: frozenset[int] = frozenset()
+        self._feed_interrupted: set[int] = set()
+        self._stopped_tasks: set[int] = set()  # running when Immediate Stop / JST / !STOP came
+
+    # -- inputs ---------------------------------------------------------------------------
+
+    def _bit(self, op: Operand) -> int:
+        return self.rt.image.get(op)
+
+    def _rising(self, op: Operand) -> bool:
+        now, before = self._bit(op), self._previous.get(op, 0)
+        self._previous[op] = now
+        return bool(now and not before)
+
+    def _edge(self, op: Operand, falling: bool) -> bool:
+        now, before = self._bit(op), self._previous.get(op, 1 if falling else 0)
+        self._previous[op] = now
+        return bool(before and not now) if falling else bool(now and not before)
+
+    @property
+    def estop_ok(self) -> bool:
+        return bool(self._bit(ESTOP))
+
+    def axis_enable_input(self, number: int) -> bool:
+        return bool(self._bit(ENABLE[number]))
+
+    def _wanted(self) -> str:
+        p, a = self._bit(PARAMETER), self._bit(AUTOMATIC)
+        if p and a:
+            return "invalid"
+        return "parameter" if p else "automatic" if a else "manual"
+
+    # -- the cycle ----------------------------------------------------------------------------
+
+    def evaluate(self) -> None:
+        wanted = self._wanted()
+        clear = self._rising(CLEAR)
+        start = self._rising(START)
+        if self.mode == "power-on":
+            self._power_on()
+        if wanted == "invalid":
+            self.fault(ClmError("08", "Parameter and Automatic are selected together"))
+            wanted = self.mode if self.mode != "power-on" else "manual"
+        if wanted == "automatic" and self.manual_vector:  # suppressed until the vector ends (§7.4)
+            wanted = "manual"
+        if wanted != self.mode:
+            self._change(wanted)
+        if not self.estop_ok:
+            self.fault(ClmError("03", "E-Stop input (I0.00.2) is open"))
+        if clear and self.fault_error is not None:
+            self.clear()
+        if self.mode == "automatic" and self.fault_error is None:
+            self._automatic(start)
+        elif self.mode == "manual":
+            self._manual()
+
+    def _power_on(self) -> None:
+        self.mode = "manual"
+        self._leave_parameter_mode()
+
+    def _change(self, wanted: str) -> None:
+        old, self.mode = self.mode, wanted
+        rt = self.rt
+        if old == "automatic":
+            self._stop_program()
+            rt.memory.leave_automatic()
+        if wanted == "parameter":
+            for task in rt.tasks:
+                task.halt()
+            self.manual_vector = False  # the Logic Task stays compiled but does not run (logic_may_run)
+            rt.memory.enter_parameter_mode()
+            return
+        if old == "parameter":
+            self._leave_parameter_mode()
+        for axis in rt.axes.values():
+            axis.reset_defaults()
+        rt.message = ""
+        self.restart_from_zero = True
+        if wanted == "automatic":
+            for n in sorted(self.enabled_axes):
+                if not self.axis_enable_input(n):
+                    self.fault(ClmError(axis_fault(0x00, n), f"Automatic selected without Enable Axis {n}"))
+                    return
+        elif wanted == "manual" and self._vector_parameter("start_on_mode_change") == 1:
+            self._start_manual_vector()
+
+    def _leave_parameter_mode(self) -> None:
+        rt = self.rt
+        params = rt.memory.parameters
+        rt.memory.leave_parameter_mode()
+        self.enabled_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
+        for axis in rt.axes.values():
+            axis.configure(params)
+        errors = params.errors()
+        if errors:
+            self.fault(errors[0] if errors[0].code in ("02", "17") else ClmError("02", errors[0].detail, errors[0].where))
+            return
+        try:
+            rt.compile_logic()
+        except ClmError as e:
+            rt.memory.logic_fault()
+            self.fault(e)
+        task3 = int(params.get("B011")["task_3_start"])
+        if task3:
+            rt.tasks[2].start(task3)
+
+    def task_may_run(self, task: NcTask) -> bool:
+        if not task.running or self.mode == "parameter":
+            return False
+        if task.number == 3:
+            return True
+        if task.number == 1 and self.manual_vector:
+            return self.mode == "manual"
+        return self.mode == "automatic" and self.running and self.fault_error is None
+
+    def logic_may_run(self) -> bool:
+        return self.mode != "parameter" and not (self.fault_error is not None and self.fault_error.code == "38")
+
+    def feed_allowed(self, number: int) -> bool:
+        return number not in self._feed_interrupted
+
+    # -- Automatic -------------------------------------------------------------------------------
+
+    def _automatic(self, start: bool) -> None:
+        for n in sorted(self.enabled_axes):  # "at all times" for the activated axes (§9.1)
+            if not self.axis_enable_input(n):
+                self.fault(ClmError(axis_fault(0x00, n), f"Enable Axis {n} lost in Automatic"))
+                return
+        run_allowed = bool(self._bit(IMMEDIATE_STOP))
+        if self.running and not run_allowed:
+            self.immediate_stop()
+        elif start and run_allowed and not self.interface_stopped:
+            self.start()
+        self._interrupt_inputs()
+        self._interrupt_vector()
+
+    def start(self, interface: bool = False) -> None:
+        """Start input (rising edge) or ``!START``: from 0000 after a mode change or a fault,
+        else where the tasks stopped (the axes first run their remaining distance)."""
+        rt = self.rt
+        if self.mode != "automatic" or self.fault_error is not None or (self.interface_stopped and not interface):
+            return
+        if not self._bit(IMMEDIATE_STOP):
+            return
+        self.interface_stopped = False
+        params = rt.memory.parameters
+        if self.restart_from_zero:
+            rt.tasks[0].start(0)
+            starts = {2: params.get("B011")["task_2_start"], 4: params.get("B012")["task_4_start"], 5: params.get("B012")["task_5_start"]}
+            for n, at in starts.items():
+                if int(at):
+                    rt.tasks[n - 1].start(int(at))
+            self.restart_from_zero = False
+        else:
+            for task in rt.tasks:
+                if task.number in self._stopped_tasks:
+                    task.running = True
+            for axis in rt.axes.values():
+                axis.resume()
+        self._stopped_tasks = set()
+        self.running = True
+
+    def immediate_stop(self, programmed: bool = False, interface: bool = False) -> None:
+        """Immediate Stop input, JST or ``!STOP``: tasks 1, 2, 4, 5 stop where they are (a waiting
+        command keeps its state), the axes decelerate keeping the remaining distance."""
+        rt = self.rt
+        self._stopped_tasks |= {t.number for t in rt.tasks if t.number != 3 and t.running}
+        for task in rt.tasks:
+            if task.number != 3:
+                task.running = False
+        for axis in rt.axes.values():
+            axis.immediate_stop()
+        self.running = False
+        self.interface_stopped = self.interface_stopped or interface
+
+    def _stop_program(self) -> None:
+        for task in self.rt.tasks:
+            if task.number != 3:
+                task.halt()
+        for axis in self.rt.axes.values():
+            axis.stop_motion()
+        self.running = False
+        self.interface_stopped = False
+        self.manual_vector = False
+
+    def _interrupt_inputs(self) -> None:
+        """Ax15 Interrupt / Feed Angle Monitoring: lost -> the axis' positioning stops and none
+        starts; back -> it goes on without Start (§5.5)."""
+        params = self.rt.memory.parameters
+        for n in self.enabled_axes:
+            value = params.get(f"A{n}15")
+            lost = any(not op.unset and not self._bit(op) for op in (value["interrupt_input"], value["feed_angle_input"]))
+            if lost and n not in self._feed_interrupted:
+                self._feed_interrupted.add(n)
+                self.rt.axes[n].immediate_stop()
+            elif not lost and n in self._feed_interrupted:
+                self._feed_interrupted.discard(n)
+                self.rt.axes[n].resume()
+
+    def _interrupt_vector(self) -> None:
+        """B015: an edge on its input sends Task 1 to the interrupt program, no return (§7.4)."""
+        value = self.rt.memory.parameters.get("B015")
+        op: Operand = value["interrupt_input"]
+        if op.unset:
+            return
+        mode = int(value["vector_mode"])
+        if self._edge(op, falling=mode in (2, 3)) and self.running:
+            self._pending_interrupt = True
+        task = self.rt.tasks[0]
+        if self._pending_interrupt and (mode in (1, 3) or not task.stack):
+            self._pending_interrupt = False
+            if int(value["interrupt_positioning"]):
+                for axis in self.rt.axes.values():
+                    axis.stop_motion()
+            task.stack.clear()
+            task.pc, task.wait = int(value["interrupt_address"]), None
+
+    # -- Manual ---------------------------------------------------------------------------------
+
+    def _manual(self) -> None:
+        run_allowed = bool(self._bit(IMMEDIATE_STOP))
+        for n in self.enabled_axes:
+            plus, minus = (self._bit(op) for op in JOG[n])
+            direction = (plus - minus) if run_allowed and self.feed_allowed(n) and not self.manual_vector else 0
+            self.rt.axes[n].jog(direction)
+        self._interrupt_inputs()
+        op = self._vector_input()
+        if op is not None and self._rising(op) and not self.manual_vector:
+            self._start_manual_vector()
+
+    def _vector_parameter(self, name: str) -> int:
+        return int(self.rt.memory.parameters.get("B014")[name])
+
+    def _vector_input(self) -> Operand | None:
+        op: Operand = self.rt.memory.parameters.get("B014")["start_input"]
+        return None if op.unset else op
+
+    def _start_manual_vector(self) -> None:
+        start = self._vector_parameter("start_instruction")
+        task = self.rt.tasks[0]
+        task.start(start)
+        self.manual_vector = True
+
+    def end_manual_vector(self) -> None:
+        self.rt.tasks[0].halt()
+        self.manual_vector = False
+        self.restart_from_zero = True
+
+    # -- faults -----------------------------------------------------------------------------------
+
+    def fault(self, error: ClmError) -> None:
+        if self.fault_error is not None:
+            return  # decision 2: the first fault stays
+        rt = self.rt
+        self.fault_error = error
+        for task in rt.tasks:
+            if task.number != 3:
+                task.halt()
+        self.running = False
+        self.manual_vector = False
+        self.restart_from_zero = True
+        for axis in rt.axes.values():
+            axis.fault_stop()
+        rt.memory.fault()
+        self._b018(on_fault=True)
+
+    def clear(self) -> None:
+        """External Clear, the CL key, ``!CLEAR``: only when the cause is gone (E-Stop closed,
+        the mode inputs valid); the program then starts from 0000 (§11.1)."""
+        if self.fault_error is None:
+            return
+        if self.fault_error.code == "03" and not self.estop_ok:
+            return
+        if self.fault_error.code == "08" and self._wanted() == "invalid":
+            return
+        self._b018(on_fault=False)
+        self.fault_error = None
+        self.restart_from_zero = True
+        if self.mode == "parameter":
+            return
+        if self.rt.logic is None and self.rt.memory.logic:
+            try:
+                self.rt.compile_logic()
+            except ClmError as e:
+                self.fault(e)
+
+    def _b018(self, on_fault: bool) -> None:
+        """B018 per output byte Q1.00-Q1.06: 0 cleared on the fault, 1 cleared when it is
+        cleared, 2 never (spec §5.3)."""
+        value = self.rt.memory.parameters.get("B018")
+        for byte in range(7):
+            digit = int(value[f"clear_q1_{byte:02d}"])
+            if (digit == 0 and on_fault) or (digit == 1 and not on_fault):
+                self.rt.write_byte(Operand("Q", 1, byte), 0)
+
+    # -- outputs ----------------------------------------------------------------------------------
+
+    def outputs(self) -> None:
+        image = self.rt.image
+        image.set(Q_MANUAL, int(self.mode == "manual"))
+        image.set(Q_AUTOMATIC, int(self.mode == "automatic"))
+        image.set(Q_PARAMETER, int(self.mode == "parameter"))
+        image.set(Q_ERROR, int(self.fault_error is None))
+        image.set(Q_RUN_TASK, int(self.running))
+        selector = int(self.rt.memory.parameters.get("B018")["fault_code_output"])
+        if 1 <= selector <= 6 and self.fault_error is not None:
+            code = self.fault_error.code
+            image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)
+        for source, mirror in zip(_Q0, _STATUS_WORD):
+            image.set(mirror, image.get(source))
+

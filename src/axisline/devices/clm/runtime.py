@@ -1,0 +1,250 @@
+"""The CLM running: one NC cycle of the mode machine, the Logic Task and the five NC tasks.
+
+    rt = ClmRuntime(memory, axes, nc_cycle_s=0.002)
+    rt.step()            # once per NC cycle, after the caller sampled the inputs into rt.image
+
+The runtime works on the CLM's process image only; the personality (`personality`) copies the
+wired inputs into it before `step` and the outputs out of it at the next cycle's start ("Hardware
+outputs are set at the beginning of the following cycle", L1437), so the runtime can be tested
+without a plant.
+
+Per NC cycle (spec §1.4, §2, §3.9): the system variables are brought up to date; the mode inputs,
+E-Stop, Start, Immediate Stop and External Clear are evaluated; the Logic Task's scan advances;
+tasks 1..5 run one instruction each (Task 3 in Manual and Automatic, tasks 1, 2, 4, 5 in
+Automatic after Start; the manual vector in Manual in the Task 1 slot); the axes are monitored.
+The rules of each mode change, stop and fault (what stops, what is cleared, where a task goes
+on) are in `modes`.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. C-LT-SCAN, errata §1.3 (about 1000 assignments a second, at least 4 ms; I/O sampled at the
+   scan start): a scan spans ceil(max(4, N) ms / T) NC cycles; it reads the image as it was at
+   its first cycle and its writes appear at its last cycle, so the NC tasks see an LT output
+   change one scan after the input that caused it. Test:
+   ``tests/devices/clm/test_runtime.py::test_logic_task_scan_takes_its_time``.
+2. C-SYSVAR, §5.6 Fig. 5-1/5-2: V000 counts every NC cycle, V001 the cycles while the program
+   runs in Automatic, V002-V006 hold the tasks' instruction numbers, Vx00/Vx03/Vx04/Vx10 the
+   axes' actual position, lag, actual velocity and remaining distance, refreshed at the start of
+   each cycle (what every task of that cycle reads). Test: ``test_system_variables``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from .errors import ClmError, axis_fault
+from .execute import HANDLERS
+from .fields import Axis, Choice, Number, Var, fit_variable
+from .logic import LogicError, LogicProgram, compile_logic
+from .memory import ClmMemory
+from .modes import ModeMachine
+from .nc import NcTask
+from .operands import Operand, exists
+from .program import Instruction
+
+__all__ = ["ClmRuntime"]
+
+_SCALE = 1_000_000
+
+
+class ClmRuntime:
+    def __init__(self, memory: ClmMemory, axes: dict[int, Any], nc_cycle_s: float) -> None:
+        self.memory = memory
+        self.axes = axes  # CLM axis number -> ClmAxis (the axes the machine file gives the CLM)
+        self.nc_cycle_s = nc_cycle_s
+        self.cycle = 0
+        self.tasks = [NcTask(n) for n in range(1, 6)]
+        self.master_factor = _SCALE  # FAK 5: master encoder 1's feed constant factor
+        self.message = ""  # Status 53 text (TXT mode 1)
+        self.text_lines = [""] * 4  # Status 63 (TXT mode 0)
+        self._txt_run: tuple[int, int] = (-1, 0)  # (cycle, next line) of the TXT run in progress
+        self.logic: LogicProgram | None = None
+        self._lt_owned: set[tuple[str, int, int, int | None]] = set()
+        self._lt_scan: tuple[int, Any] | None = None  # (cycle its writes appear, image snapshot)
+        self.on_move: Callable[[Any, NcTask], None] | None = None  # the report's hook
+        self.modes = ModeMachine(self)
+
+    # -- the cycle -------------------------------------------------------------------------
+
+    @property
+    def image(self) -> Any:
+        return self.memory.image
+
+    def step(self) -> None:
+        """One NC cycle (the inputs already sampled into the image)."""
+        self._system_variables()
+        try:
+            self.modes.evaluate()
+            self._logic_task()
+            for task in self.tasks:
+                if self.modes.task_may_run(task):
+                    task.step(self, HANDLERS)
+            for axis in self.axes.values():
+                err = axis.tick(self.modes.mode, self.modes.axis_enable_input(axis.number), self.modes.estop_ok)
+                if err is not None:
+                    raise err
+        except ClmError as e:
+            self.modes.fault(e)
+        self.modes.outputs()
+        self.cycle += 1
+
+    def cycles_for_ms(self, ms: int) -> int:
+        return math.ceil(ms / (self.nc_cycle_s * 1000) - 1e-9)
+
+    # -- Logic Task ---------------------------------------------------------------------------
+
+    def compile_logic(self) -> None:
+        """On leaving Parameter mode and at power on (L3177): fault 38 when it does not compile."""
+        self.logic, self._lt_scan, self._lt_owned = None, None, set()
+        if not self.memory.logic:  # an empty Logic Task memory is END at 0000, the state !sCNOPLT leaves
+            return
+        try:
+            program = compile_logic(self.memory.logic)
+        except LogicError as e:
+            first = e.errors[0] if getattr(e, "errors", None) else e
+            raise ClmError("38", first.detail, first.where) from None
+        self.logic = program
+        self._lt_owned = {(op.area, op.source, op.byte, op.bit) for op in program.writes}
+
+    def _logic_task(self) -> None:
+        program = self.logic
+        if program is None or not program.active or not self.modes.logic_may_run():
+            self._lt_scan = None
+            return
+        if self._lt_scan is None:  # a scan begins: it samples the image now (errata §1.3)
+            span = max(1, math.ceil(program.scan_time_ms / (self.nc_cycle_s * 1000) - 1e-9))
+            self._lt_scan = (self.cycle + span - 1, self.image.copy())
+        end, snapshot = self._lt_scan
+        if self.cycle < end:
+            return
+        program.scan(snapshot)
+        for op in program.writes:
+            self.image.set(op, snapshot.get(op))
+        self._lt_scan = None
+
+    def lt_owns(self, op: Operand) -> bool:
+        return (op.area, op.source, op.byte, op.bit) in self._lt_owned or (op.area, op.source, op.byte, None) in self._lt_owned
+
+    # -- image access for the NC commands -----------------------------------------------------
+
+    def read_bit(self, op: Operand) -> int:
+        return self.image.get(op)
+
+    def read_byte(self, op: Operand) -> int:
+        return self.image.get(op)
+
+    def write_bit(self, op: Operand, value: int) -> None:
+        if not self.lt_owns(op):  # decision C-LT-OWNED (execute)
+            self.image.set(op, 1 if value else 0)
+
+    def write_byte(self, op: Operand, value: int) -> None:
+        if self.lt_owns(op):
+            return
+        if not self._lt_owned:
+            self.image.set(op, value & self.image.locate(op)[2])
+            return
+        for bit in range(8):  # bit-wise: an LT-owned bit in the byte stays the Logic Task's
+            target = Operand(op.area, op.source, op.byte, bit)
+            if exists(target) and not self.lt_owns(target):
+                self.image.set(target, (value >> bit) & 1)
+
+    # -- field values -------------------------------------------------------------------------
+
+    def variable(self, ref: Var) -> int:
+        raw = self.memory.variables[ref.number]
+        return -raw if ref.sign < 0 else raw
+
+    def number(self, ins: Instruction, index: int) -> int:
+        """A numeric field's value: the constant, or the variable fitted to the field (32)."""
+        value = ins.values[index]
+        if isinstance(value, Var):
+            f = ins.command.fields[index]
+            assert isinstance(f, Number)
+            return fit_variable(f, value, self.memory.variables[value.number])
+        return int(value)  # type: ignore[call-overload]
+
+    def target(self, ins: Instruction, index: int) -> int:
+        n = self.number(ins, index)
+        if not 0 <= n <= 2999:
+            raise ClmError("0E", f"{ins.command.fields[index].name} = {n}: instructions are 0000-2999")
+        return n
+
+    def state_value(self, ins: Instruction, index: int) -> int:
+        """A 0/1 state field; from a variable it must be 0 or 1 (32)."""
+        value = ins.values[index]
+        if isinstance(value, Var):
+            raw = self.memory.variables[value.number]
+            if raw not in (0, _SCALE):
+                raise ClmError("32", f"{value} = {raw / _SCALE:.6f}: the state is 0 or 1")
+            return raw // _SCALE
+        assert isinstance(ins.command.fields[index], Choice)
+        return int(str(value))
+
+    def axis(self, ins: Instruction, index: int) -> Any:
+        value = ins.values[index]
+        if isinstance(value, Var):
+            raw = self.memory.variables[value.number]
+            field = ins.command.fields[index]
+            assert isinstance(field, Axis)
+            if raw % _SCALE or raw // _SCALE not in field.axes:
+                raise ClmError("16", f"{value} = {raw / _SCALE:.6f}: the axis is {field.describe()}")
+            value = raw // _SCALE
+        number = int(value)  # type: ignore[call-overload]
+        axis = self.axes.get(number)
+        if axis is None or number not in self.modes.enabled_axes:
+            raise ClmError(axis_fault(0x0E, number), f"{ins.mnemonic} for axis {number}, which is not enabled")
+        return axis
+
+    def feed_allowed(self, axis: Any) -> bool:
+        return self.modes.feed_allowed(axis.number)
+
+    def moved(self, axis: Any, task: NcTask) -> None:
+        if self.on_move is not None:
+            self.on_move(axis, task)
+
+    def set_position_variable(self, number: int, raw: int) -> None:
+        """SET V047/V048/Vx00 while not homed: the actual position becomes the value (L2590)."""
+        axis_number = number // 100 if number >= 100 else number - 46
+        axis = self.axes.get(axis_number)
+        if axis is None or axis.homed:
+            raise ClmError("31", f"V{number:03d} can be set only while axis {axis_number} is not homed (L2590)")
+        axis.set_actual(raw / _SCALE)
+
+    # -- program flow -------------------------------------------------------------------------
+
+    def programmed_stop(self, task: NcTask, target: int) -> None:
+        self.modes.immediate_stop(programmed=True)
+
+    def manual_vector_running(self, task: NcTask) -> bool:
+        return task.number == 1 and self.modes.manual_vector
+
+    def end_manual_vector(self) -> None:
+        self.modes.end_manual_vector()
+
+    def show_text(self, mode: str, text: str, task: NcTask) -> None:
+        if mode == "1":
+            self.message = text
+            return
+        cycle, line = self._txt_run
+        line = line if cycle == self.cycle else 0  # a run of TXT in one cycle fills lines 1..4
+        self.text_lines[line % 4] = text
+        self._txt_run = (self.cycle, line + 1)
+
+    # -- system variables ---------------------------------------------------------------------
+
+    def _system_variables(self) -> None:
+        v = self.memory.variables
+        v.set_system(0, self.cycle * _SCALE)
+        if self.modes.running:
+            v.set_system(1, v[1] + _SCALE)
+        for task in self.tasks:
+            v.set_system(1 + task.number, task.pc * _SCALE)
+        v.set_system(19, int(self.cycle * self.nc_cycle_s / 3600) * _SCALE)
+        for n, axis in self.axes.items():
+            base = 100 * n
+            v.set_system(base, round(axis.actual_position * _SCALE))
+            v.set_system(base + 3, round(axis.lag * _SCALE))
+            v.set_system(base + 4, round(axis.actual_velocity * _SCALE))
+            v.set_system(base + 10, round(axis.remaining_distance * _SCALE))
