@@ -33,6 +33,7 @@ from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
 from .motion.axis import AxisConfig
 from .sync_setup import CamEntry, MasterEntry, load_cam_csv
 from .plant.config import (
+    ActuatorConfig,
     DigitalIOConfig,
     EncoderConfig,
     MaterialConfig,
@@ -133,6 +134,9 @@ class MachineConfig(_Strict):
     material: MaterialConfig | None = Field(None, description="the material line, if the machine has one")
     marks: list[MarkEntry] = Field(default_factory=list, max_length=16, description="print-mark sensors on the material")
     io: DigitalIOConfig = Field(default_factory=DigitalIOConfig, description="named digital inputs and outputs")
+    actuator: list[ActuatorConfig] = Field(
+        default_factory=list, max_length=64, description="cylinders on [io] outputs with end switches on [io] inputs (a press ram, a clamp)"
+    )
     master: list[MasterEntry] = Field(default_factory=list, max_length=16, description="masters slaves can follow")
     device: dict[str, Any] = Field(default_factory=dict, description="the personality's own table, validated by it")
     cam: list[CamEntry] = Field(default_factory=list, max_length=64, description="cam curves")
@@ -161,6 +165,13 @@ class MachineConfig(_Strict):
             for n in seen:
                 if seen.count(n) > 1:
                     raise ValueError(f"{kind} name {n!r} is used twice")
+        for i, act in enumerate(self.actuator):
+            if act.valve not in self.io.outputs:
+                raise ValueError(f"actuator[{i}].valve = {act.valve!r}: not an [io] output (outputs: {', '.join(self.io.outputs) or 'none'})")
+            for key in ("retracted", "extended"):
+                switch = getattr(act, key)
+                if switch is not None and switch not in self.io.inputs:
+                    raise ValueError(f"actuator[{i}].{key} = {switch!r}: not an [io] input (inputs: {', '.join(self.io.inputs) or 'none'})")
         for m in self.master:
             if m.axis is not None and m.axis not in names:
                 raise ValueError(f"master {m.name!r}: axis = {m.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")

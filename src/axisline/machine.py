@@ -150,6 +150,7 @@ class Machine:
             self.device = base.load(config.machine.personality)(self, dev_cfg)
             self.scheduler.add_task("device", self.device.tick, Stage.LOGIC, every=config.machine.logic_every)
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
+        self.actuators = tuple((a, a.build()) for a in config.actuator)
         self._io_used = bool(self.io.inputs or self.io.outputs)
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
             self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
@@ -285,6 +286,13 @@ class Machine:
                 sensor.sample(t_start, dt)
         for name, sensor in self._io_followers:
             self.io.set_input(name, sensor.state)
+        io = self.io
+        for entry, cylinder in self.actuators:  # the outputs the controller wrote this cycle move them
+            cylinder.step(dt, io.output(entry.valve))
+            if entry.retracted is not None:
+                io.set_input(entry.retracted, cylinder.retracted)
+            if entry.extended is not None:
+                io.set_input(entry.extended, cylinder.extended)
         if self._io_used:  # an image without inputs and outputs samples nothing
             self.io.sample()
 

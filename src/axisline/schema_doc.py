@@ -52,7 +52,7 @@ def model_table(model: type[BaseModel]) -> list[str]:
 def render() -> str:
     from .config import AxisEntry, MachineSection, MarkEntry, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
     from .job import JobConfig, JobStep
-    from .plant.config import DigitalIOConfig, EncoderConfig, MaterialConfig, MeasuringWheelConfig, SpeedChangeConfig
+    from .plant.config import ActuatorConfig, DigitalIOConfig, EncoderConfig, MaterialConfig, MeasuringWheelConfig, SpeedChangeConfig
     from .config import MAX_FILE_BYTES
     from .job import REQUIRED
     from .sync_setup import MAX_CSV_BYTES, CamEntry, MasterEntry, SegmentEntry
@@ -68,6 +68,7 @@ def render() -> str:
         ("[[material.profile]]", SpeedChangeConfig, "A speed change of the material line."),
         ("[[marks]]", MarkEntry, "A print-mark sensor reading marks printed on the material."),
         ("[io]", DigitalIOConfig, "Named digital inputs and outputs; an input named like a switch follows it."),
+        ("[[actuator]]", ActuatorConfig, "A cylinder (press ram, clamp) on an [io] output with end switches on [io] inputs."),
         ("[[master]]", MasterEntry, "A master that slaves follow (gear_in, gear_in_pos, cam_in job steps)."),
         ("[master.wheel]", MeasuringWheelConfig, "kind = \"wheel\": a measuring wheel rolling on the material."),
         ("[[cam]]", CamEntry, "A cam curve over one master cycle (`segments` rows: master_end, slave_end, law)."),

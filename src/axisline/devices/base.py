@@ -146,3 +146,4 @@ class Personality(ABC):
 register("wago672", "axisline.devices.wago672.personality:Wago672Personality")
 register("compax", "axisline.devices.compax.personality:CompaxPersonality")
 register("fs701", "axisline.devices.fs701.personality:Fs701Personality")
+register("clm", "axisline.devices.clm.personality:ClmPersonality")

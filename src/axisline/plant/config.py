@@ -14,6 +14,7 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, StringConstraints, model_validator
 
+from .actuators import Cylinder
 from .drives import ServoDrive, StepperDrive
 from .encoder import IncrementalEncoder, MeasuringWheel
 from .io import AnalogIO, DigitalIO
@@ -371,3 +372,18 @@ def _check_unique(names: list[str]) -> None:
         if name in seen:
             raise ValueError(f"I/O name {name!r} is used twice")
         seen.add(name)
+
+
+class ActuatorConfig(PlantModel):
+    """A cylinder on a valve output, with end switches (a press ram, a clamp): `Cylinder`."""
+
+    name: IOName = Field(description="Name of the actuator (for messages).")
+    valve: IOName = Field(description="The [io] output that drives it: on = extend.")
+    retracted: IOName | None = Field(None, description="[io] input closed while it is retracted (at home).")
+    extended: IOName | None = Field(None, description="[io] input closed while it is fully extended.")
+    extend_time: float = Field(gt=0.0, le=3600.0, description="Travel from retracted to extended, s.")
+    retract_time: float = Field(gt=0.0, le=3600.0, description="Travel from extended to retracted, s.")
+
+    def build(self) -> Cylinder:
+        return Cylinder(self.extend_time, self.retract_time)
+

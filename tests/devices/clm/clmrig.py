@@ -87,6 +87,9 @@ class FakeAxis:
     def fault_stop(self) -> None:
         self.stops.append("fault")
 
+    def clear_fault(self) -> None:
+        self.stops.append("clear")
+
     def set_actual(self, position: float) -> None:
         self.actual_position = position
         self.target = round(position * 1000)

@@ -148,7 +148,7 @@ def test_parameters_decide_axes_and_cutoff_rules(tmp_path):
 
 def test_broken_parameter_file_names_the_parameter(tmp_path):
     par = tmp_path / "bad.par"
-    par.write_text((EXAMPLES / "roll_feed.par").read_text().replace("A106 000100.000", "A106 0001x0.000"))
+    par.write_text((EXAMPLES / "roll_feed.par").read_text().replace("A106 000500.000", "A106 0005x0.000"))
     r = clm("check", EXAMPLES / "roll_feed.prg", "--params", par)
     assert r.exit_code == 2
     assert "A106 02" in r.output and "bad.par:" in r.output

@@ -355,6 +355,8 @@ class ModeMachine:
         self._b018(on_fault=False)
         self.fault_error = None
         self.restart_from_zero = True
+        for axis in self.rt.axes.values():  # the drives may be enabled again
+            axis.clear_fault()
         if self.mode == "parameter":
             return
         if self.rt.logic is None and self.rt.memory.logic:

@@ -1,0 +1,584 @@
+"""One CLM1.4 axis on the kernel's axis: positioning commands, drive enable and brake, monitoring.
+
+    clm = ClmAxis(1, machine, "feed", params, image, nc_cycle_s=0.002)   # configure() runs here
+    clm.position_incremental(200_000, 999)    # POI 1 +000200.000 999 (lengths in 1/1000 IU)
+    err = clm.tick("automatic", enable_input=True, estop_ok=True)   # once per NC cycle
+    clm.in_position, clm.lag, clm.remaining_distance
+
+Every motion is a command of the kernel's `Axis` (move_absolute, move_velocity, halt, power),
+planned by its profile generator; the CLM's part is what it commands: targets in exact
+fractions of an IU (``target += distance x FAK``), velocities in per mille of Ax06, ACC / Ax09
+ramps, the Ax10 jerk, and the position loop `clmloop.ClmLoop` in place of the kernel's Kv loop
+(``machine.drive_by(axis, loop, volts=True)``: the +-10 V path of the simulated amplifier).
+The machine file's axis unit is the CLM's IU; its v_max / a_max must be at least Ax06 / Ax08
+(the kernel clamps to them as the mechanics' limits). Outputs go to the CLM process image:
+Drive Enable and Brake (spec §6.3), Ax27 Position reached, Ax28 Position window, Ax14
+Position error > max. deviation.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. Errata §1.1, L4461, L4530 -> v_cmd = FF + Kv x 1000/60 x lag (IU/s; the spec's "IU/min" is
+   60x too weak); test_steady_lag_follows_the_kv_formula.
+2. Ax12 (L4473-4482) -> volts = v_cmd / (RPM / 60 x feed constant) x Ax12 volts, clipped to
+   +-10 V; the feed constant is Ax01, x Y/X only where Ax02 is used (incremental rotary table,
+   L3581); test_steady_lag_follows_the_kv_formula checks the volts.
+3. Ax11 feedforward (L4443-4457) -> 1 = set-point velocity, n >= 2 = its average over
+   2^(n-1) cycles; test_feed_forward_removes_the_steady_lag.
+4. Ax14 "mathematical model" (L4518-4532) -> the ideal closed loop (clmloop); deviation from it
+   beyond Ax14 % of Ax12 RPM x Ax01 / (1000 Kv) is Runaway when the encoder moves away from the
+   model (L4520: wrong direction, moving without command), else Lag (L4522: too slow, stalled);
+   Lag and Runaway also drop the homed state (errata §3.8);
+   test_excess_lag_when_the_drive_cannot_follow, test_runaway_with_a_reversed_encoder.
+5. Ax14 output (L4504 "set only when the error message is deactivated") -> set while the
+   deviation is beyond the window and its kind's message is off (mode 1 both, 2 lag, 3 runaway);
+   test_ax14_output_instead_of_the_message.
+6. Per mille (errata §3.2, L2230) -> v = vvv / 1000 x Ax06 (999 = 99.9 %); ACC aaa/ddd likewise
+   of Ax08, and 000 = Ax08 itself as in Ax09 (L4412; a zero ramp could never start);
+   test_poi_reaches_target_at_per_mille_of_ax06, test_acc_changes_the_ramp.
+7. ACC (L1409 "acceptance ... immediate" vs L1454 "as for the ACC command, as soon as any
+   positioning move in process has been completed") -> both hold: the values are taken at once
+   for every following positioning, CON, PBK and stop, a move already running keeps its ramps
+   (as FAK, L1931); test_acc_changes_the_ramp.
+8. Ax10 (L4428-4430) -> the time is rounded up to 2^n NC cycles and the move is jerk limited
+   with j = max(accel, decel) / that time (no ramp of the acceleration lasts longer);
+   test_ax10_jerk_time_rounded_up_to_a_power_of_two_cycles.
+9. FAK (L1917-1933) -> targets are exact fractions (+100 x 1.2345 = 123.45 exactly); a running
+   move keeps its target; test_fak_scales_the_next_positionings.
+10. POI (L2287-2289) -> target := last target + L x FAK (a running move is extended); after PBK,
+    CON off or the end of a jog the last target is the point the braking ends at, so PBK + POI
+    gives "the deceleration distance plus 50 IU" with a continuous 99.9 % -> 10 % transition
+    (L2225-2230); test_pbk_discards_the_rest_and_poi_adds_to_the_stop_point.
+11. PSA/PSI and Ax27 (L2307-2328, L4774) -> in position = the set point has reached the target
+    ("positioning procedure has been completed", L2328) and |target - actual| <= Ax27; the
+    adjustment goes on afterwards (L2322); test_in_position_per_ax27.
+12. Immediate Stop / JST (L5879, L2077) -> brake with the current deceleration, keep the target;
+    `resume` moves to it (no loss of dimensions); CON is switched off, not kept;
+    test_immediate_stop_and_resume_lose_no_dimension.
+13. Drive Enable (L6027-6035) -> on in Manual/Automatic with E-Stop closed, Enable Axis x and no
+    fault; off at once otherwise. Brake output 1 = 24 V = released (L7407), 200 ms after Drive
+    Enable (L6058), 0 at once with it (L6060). The position loop holds from Drive Enable on;
+    motion is not held back for the brake (the amplifier holds against it);
+    test_drive_enable_and_brake_with_200_ms_delay.
+14. L6039 "In Automatic Mode, Drive Enable must be present ... at all times" -> tick returns
+    40/70/A0/D0 whenever Enable Axis x is missing in Automatic; test_automatic_without_enable_is_40.
+15. Travel limits (L4292-4334) -> linear axes (Ax00 type 1) with a reference (homed or absolute
+    encoder): Automatic faults 46/47 on the actual position; a jog runs to the limit and stops
+    there (a move_absolute at Ax07), and is dead beyond it; test_jog_at_ax07_stops_at_the_limit,
+    test_travel_limit_fault_in_automatic.
+16. POA (L2265, L4298, L4326) -> 48 without a reference first, then 50/51 (linear axes only, on
+    the target x FAK); test_poa_errors_48_50_51.
+17. A positioning while the drive is not enabled (or at 000 per mille) -> the target is taken
+    and the move starts when the drive is enabled (Inhibit Operation, §6.2: "a move is blocked");
+    test_move_waits_for_drive_enable.
+18. CPL (L1798-1806) -> once: set point := actual (kernel power off/on within the cycle: the
+    running move ends), target := actual, the Ax14 model restarts; test_cpl_clears_the_lag.
+19. Jog (L5901-5918) -> Ax07 with the current ACC ramps (Ax09 in Manual, L1413); releasing the
+    key brakes with the deceleration; jog(0) ends only a jog, never a program's move;
+    test_jog_at_ax07_stops_at_the_limit.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+from axisline.motion.axis import AxisState
+from axisline.motion.profiles import Limits, State, plan_velocity
+
+from .clmloop import LAG, NONE, RUNAWAY, ClmLoop
+from .errors import ClmError, axis_fault
+from .image import ProcessImage
+from .operands import Operand
+from .parameters import ParameterSet
+
+__all__ = ["ClmAxis", "DRIVE_OUTPUTS", "BRAKE_DELAY_S"]
+
+#: Drive Enable and Brake outputs per axis (spec §6.3, L6010-6052).
+DRIVE_OUTPUTS = {
+    1: (Operand("Q", 0, 0, 3), Operand("Q", 0, 0, 4)),
+    2: (Operand("Q", 0, 0, 6), Operand("Q", 0, 0, 7)),
+    3: (Operand("Q", 0, 1, 6), Operand("Q", 0, 2, 0)),
+    4: (Operand("Q", 0, 1, 7), Operand("Q", 0, 2, 1)),
+}
+BRAKE_DELAY_S = 0.2  # L6058
+_MILLI = 1000  # program lengths are 1/1000 IU
+_MILLIONTH = 1_000_000  # FAK f.ffffff
+
+
+def _f(x: Any) -> Fraction:
+    return Fraction(str(x)) if not isinstance(x, (int, Fraction)) else Fraction(x)
+
+
+class ClmAxis:
+    """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
+
+    def __init__(self, number: int, machine: Any, axis_name: str, params: ParameterSet, image: ProcessImage, nc_cycle_s: float) -> None:
+        if number not in DRIVE_OUTPUTS:
+            raise ValueError(f"a CLM axis is 1..4, not {number}")
+        self.number = number
+        self.machine = machine
+        self.axis_name = axis_name
+        self.axis = machine.axis(axis_name)
+        self.image = image
+        self.nc_cycle_s = float(nc_cycle_s)
+        self.loop = ClmLoop(self.axis, machine.period)
+        self._enable_out, self._brake_out = DRIVE_OUTPUTS[number]
+        self._brake_cycles = math.ceil(BRAKE_DELAY_S / self.nc_cycle_s - 1e-9)
+        self._drive_on = False
+        self._on_cycles = 0
+        self._fault = False
+        self._homed = False
+        self._tx: Fraction | None = None  # programmed target (axis frame), exact
+        self._tf: float | None = None  # the same as a float (read every cycle)
+        self._speed = 0.0  # IU/s of the positioning to the target
+        self._kept = False  # Immediate Stop / JST: the rest waits for resume()
+        self._blocked = False  # waits for Drive Enable (or a velocity)
+        self._con: float | None = None  # CON velocity, IU/s
+        self._jog = 0
+        self._braking = False  # a move_velocity(0) that ends in halt()
+        self.configure(params)
+
+    # ------------------------------------------------------------------ parameters
+
+    def configure(self, params: ParameterSet) -> None:
+        """Read Ax.. (after Parameter mode) and install the CLM position loop on the kernel axis."""
+        a = f"A{self.number}"
+
+        def num(pid: str, name: str) -> Fraction:
+            return _f(params.get(a + pid).number(name))
+
+        feed = num("01", "feed_constant")
+        if params.used(a + "02"):
+            gear = params.get(a + "02")
+            feed = feed * _f(gear["output_revolutions"]) / _f(gear["input_revolutions"])
+        self._feed = feed
+        rpm = num("12", "max_encoder_speed")
+        self._full_speed = float(rpm / 60 * feed)
+        self._vmax = num("06", "maximum_velocity")
+        self._vjog = float(num("07", "jog_velocity"))
+        self._a08 = num("08", "acceleration")
+        self._ax09 = (int(num("09", "acceleration")), int(num("09", "deceleration")))
+        self._jerk_time = self._round_jerk_time(float(num("10", "jerk_constant")))
+        kv = num("11", "kv_factor")
+        p14 = params.get(a + "14")
+        self._monitor_mode = int(p14["monitoring_mode"])
+        self.window = float(_f(p14["window_percent"]) / 100 * rpm * feed / (1000 * kv))
+        self._ax14_out: Operand = p14["deviation_output"]
+        p27, p28 = params.get(a + "27"), params.get(a + "28")
+        self._ax27_out: Operand = p27["position_reached_output"]
+        self.threshold = float(p27["switching_threshold"])
+        self._ax28_out: Operand = p28["position_window_output"]
+        self._ax28 = float(p28["position_window"])
+        self._min = num("03", "min_travel_limit")
+        self._max = num("04", "max_travel_limit")
+        self._min_f, self._max_f = float(self._min), float(self._max)
+        self._linear = params.motion_type(self.number) == 1
+        self._absolute = params.encoder_type(self.number) in (1, 2)
+        self._enabled = self.number in params.enabled_axes()
+        self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
+                            full_volts=float(num("12", "command_voltage")), window=self.window)
+        self.machine.drive_by(self.axis_name, self.loop, volts=True)
+        self.reset_defaults()
+
+    def _round_jerk_time(self, seconds: float) -> float | None:
+        """Ax10 rounded up to 2^n NC cycles (L4428-4430); None: off."""
+        if seconds <= 0.0:
+            return None
+        n = max(0, math.ceil(math.log2(seconds / self.nc_cycle_s) - 1e-9))
+        return 2**n * self.nc_cycle_s
+
+    # ------------------------------------------------------------------ settings
+
+    def set_acceleration(self, accel: int, decel: int) -> None:
+        """ACC: per mille of Ax08, 000 = Ax08 (decisions 6, 7)."""
+        for value in (accel, decel):
+            if not 0 <= value <= 999:
+                raise ValueError(f"ACC takes 000..999 per mille, not {value}")
+        self._acc = (accel, decel)
+
+    def set_factor(self, factor: int) -> None:
+        """FAK: f.ffffff as millionths (decision 9)."""
+        if factor < 0:
+            raise ValueError(f"FAK is 0.000000..9.999999, not {factor}")
+        self._factor = Fraction(factor, _MILLIONTH)
+
+    def reset_defaults(self) -> None:
+        """Mode change / error / power up: ACC -> Ax09 (L1413), FAK -> 1 (L1933), CON off (L1721),
+        a kept or blocked remaining distance dropped; a moving axis brakes."""
+        self._acc = self._ax09
+        self._factor = Fraction(1)
+        if self._kept or self._blocked:
+            self._kept = self._blocked = False
+            self._target = None
+        if self._con is not None or self._jog or not self.motion_done:
+            self.stop_motion()
+
+    @property
+    def acceleration(self) -> float:
+        return self._ramp(self._acc[0])
+
+    @property
+    def deceleration(self) -> float:
+        return self._ramp(self._acc[1])
+
+    def _ramp(self, per_mille: int) -> float:
+        return float(self._a08 if per_mille == 0 else self._a08 * per_mille / 1000)
+
+    def _jerk(self) -> float | None:
+        t = self._jerk_time
+        return None if t is None else max(self.acceleration, self.deceleration) / t
+
+    # ------------------------------------------------------------------ positioning
+
+    def _check(self) -> None:
+        if not self._enabled:
+            raise ClmError(axis_fault(0x0E, self.number), f"axis {self.number} is not enabled in B000")
+
+    def _velocity(self, per_mille: int) -> float:
+        if not -999 <= per_mille <= 999:
+            raise ValueError(f"a velocity is 000..999 per mille of Ax06, not {per_mille}")
+        return float(self._vmax * per_mille / 1000)
+
+    def position_absolute(self, target: int, per_mille: int) -> None:
+        """POA / PSA: target (1/1000 IU) x FAK; 48 without a reference, 50/51 beyond Ax03/Ax04."""
+        self._check()
+        n = self.number
+        if not self.homed:
+            raise ClmError(axis_fault(0x08, n), f"POA/PSA on axis {n} needs a reference (homing or an absolute encoder, L2265)")
+        goal = Fraction(target, _MILLI) * self._factor
+        if self._linear and goal < self._min:
+            raise ClmError(axis_fault(0x10, n), f"target {float(goal):.3f} is below Ax03 = {float(self._min):.3f} (L4298)")
+        if self._linear and goal > self._max:
+            raise ClmError(axis_fault(0x11, n), f"target {float(goal):.3f} is above Ax04 = {float(self._max):.3f} (L4326)")
+        self._move_to(goal, self._velocity(per_mille))
+
+    def position_incremental(self, distance: int, per_mille: int) -> None:
+        """POI / PSI: the target grows by distance (1/1000 IU) x FAK (decision 10)."""
+        self._check()
+        speed = self._velocity(per_mille)
+        self._move_to(self._base() + Fraction(distance, _MILLI) * self._factor, speed)
+
+    def _base(self) -> Fraction:
+        return self._target if self._target is not None else Fraction(self.axis.command_position)
+
+    def _move_to(self, goal: Fraction, speed: float) -> None:
+        self._con = None
+        self._jog = 0
+        self._kept = False
+        self._braking = False
+        self._target = goal
+        self._speed = abs(speed)
+        self._start()
+
+    def _start(self) -> None:
+        """Hand the target (or CON) to the kernel; blocked while the drive is off (decision 17)."""
+        ax = self.axis
+        if not (self._drive_on and ax.powered):
+            self._blocked = True
+            return
+        if self._con is not None:
+            cmd = ax.move_velocity(self._con, acceleration=self.acceleration, deceleration=self.deceleration, jerk=self._jerk())
+        elif self._target is not None and self._speed > 0.0:
+            cmd = ax.move_absolute(float(self._target), velocity=self._speed, acceleration=self.acceleration,
+                                   deceleration=self.deceleration, jerk=self._jerk())
+        else:
+            self._blocked = self._target is not None  # 000 per mille: the target waits for a velocity
+            return
+        self._blocked = bool(cmd.error)
+
+    def continuous(self, on: bool, signed_per_mille: int) -> None:
+        """CON: run at the signed per mille of Ax06, or brake (CON off)."""
+        self._check()
+        if on:
+            self._kept = False
+            self._jog = 0
+            self._braking = False
+            self._target = None
+            self._con = self._velocity(signed_per_mille)
+            self._start()
+        elif self._con is not None:
+            self.stop_motion()
+
+    def stop_motion(self) -> None:
+        """PBK: brake with the current deceleration, the rest is ignored, CON off (L2219)."""
+        self._con = None
+        self._jog = 0
+        self._kept = self._blocked = False
+        self._target = self._brake()
+
+    def immediate_stop(self) -> None:
+        """Immediate Stop input / JST: brake, keep the remaining distance (L5879, L2077)."""
+        if self._con is not None or self._jog:
+            self.stop_motion()  # CON is switched off (L2077), a jog ends
+            return
+        if self._target is None or self.motion_done:
+            return
+        self._blocked = False
+        self._kept = True
+        self._brake()
+
+    def resume(self) -> None:
+        """The next Start: the kept remaining distance first."""
+        if self._kept:
+            self._kept = False
+            self._start()
+
+    def _brake(self) -> Fraction | None:
+        """Brake to rest with the current deceleration; returns where the set point stops."""
+        ax = self.axis
+        if not ax.powered:
+            return None
+        d, j = self.deceleration, self._jerk()
+        if ax.command_velocity == 0.0 and ax.command_acceleration == 0.0 and ax.motion_ended:
+            if ax.active_command is not None:
+                ax.halt()
+            return Fraction(ax.command_position)
+        stop = self._stop_point(d, j)
+        ax.move_velocity(0.0, acceleration=d, deceleration=d, jerk=j)
+        self._braking = True
+        return Fraction(stop)
+
+    def _stop_point(self, d: float, j: float | None) -> float:
+        """Where move_velocity(0, d, d, j) from the set point ends: the kernel's plan, mirrored."""
+        ax = self.axis
+        c = ax.config
+        shape = c.shape if c.shape is not None else ("jerk" if c.j_max is not None else "trapezoid")
+        if j is not None and shape == "trapezoid":
+            shape = "jerk"
+        jj = j if j is not None else c.j_max
+        if jj is not None and c.j_max is not None:
+            jj = min(jj, c.j_max)
+        d_max = c.d_max if c.d_max is not None else c.a_max
+        lim = Limits(v=c.v_max, a=min(d, c.a_max), d=min(d, d_max), j=jj if shape != "trapezoid" else None)
+        prof = plan_velocity(shape, State(ax.command_position, ax.command_velocity, ax.command_acceleration), 0.0, lim)
+        return prof.sample(prof.duration)[0]
+
+    def clear_lag(self) -> None:
+        """CPL: the set point becomes the actual position, once (decision 18)."""
+        self._check()
+        ax = self.axis
+        self._con = None
+        self._jog = 0
+        self._kept = self._blocked = self._braking = False
+        if ax.powered:
+            ax.power(False)
+            ax.power(True)
+        self._target = Fraction(ax.actual_position)
+        self.loop.resync()
+
+    def jog(self, direction: int) -> None:
+        """Manual: -1 / 0 / +1 at Ax07 (decisions 15, 19); called every cycle with the keys."""
+        if direction not in (-1, 0, 1):
+            raise ValueError(f"jog direction is -1, 0 or +1, not {direction}")
+        if direction == self._jog:
+            return
+        if direction == 0:
+            self.stop_motion()
+            return
+        ax = self.axis
+        if not (self._drive_on and ax.powered):
+            return  # nothing moves (Inhibit Operation); asked again next cycle
+        self._con = None
+        self._kept = self._blocked = self._braking = False
+        a, d, j = self.acceleration, self.deceleration, self._jerk()
+        if self._limits_apply():
+            limit = self._max if direction > 0 else self._min
+            if (Fraction(ax.command_position) - limit) * direction >= 0:
+                self._jog = direction  # the key is dead at the limit (L4294, L4330)
+                self._target = None
+                return
+            ax.move_absolute(float(limit), velocity=self._vjog, acceleration=a, deceleration=d, jerk=j)
+        else:
+            ax.move_velocity(direction * self._vjog, acceleration=a, deceleration=d, jerk=j)
+        self._jog = direction
+        self._target = None
+
+    def _limits_apply(self) -> bool:
+        return self._linear and self.homed
+
+    # ------------------------------------------------------------------ references
+
+    @property
+    def homed(self) -> bool:
+        """A reference: homed, or an absolute encoder (L2265)."""
+        return self._homed or self._absolute
+
+    @homed.setter
+    def homed(self, value: bool) -> None:
+        self._homed = bool(value)
+
+    def set_actual(self, position: float) -> None:
+        """SET V047/V048/Vx00, SAC, homing: the actual position becomes `position` (no motion)."""
+        ax = self.axis
+        delta = position - ax.actual_position
+        ax.set_position(delta, relative=True)
+        if self._target is not None:
+            self._target += Fraction(delta)
+        self.loop.resync()
+
+    # ------------------------------------------------------------------ per NC cycle
+
+    def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> ClmError | None:
+        """Drive Enable / Brake, the kernel axis' power, monitoring and outputs (decisions 4, 13-15)."""
+        ax = self.axis
+        run = mode in ("manual", "automatic") and estop_ok and enable_input and self._enabled and not self._fault
+        if run and not self._drive_on:
+            self._drive_on = True
+            self._on_cycles = 0
+            ax.power(True)
+            self.loop.resync()
+            if self._blocked:
+                self._start()
+        elif not run and self._drive_on:
+            self._drive_off()
+        elif run:
+            self._on_cycles += 1
+        if self._braking and ax.motion_ended and ax.command_velocity == 0.0:
+            self._braking = False
+            ax.halt()  # the kernel's state: STANDSTILL
+        fault = None if self._fault else self._find_fault(mode, enable_input)
+        if fault is not None:
+            self.fault_stop()
+        self._outputs()
+        return fault
+
+    def _find_fault(self, mode: str, enable_input: bool) -> ClmError | None:
+        n = self.number
+        if mode == "automatic" and self._enabled and not enable_input:
+            return ClmError(axis_fault(0x00, n), f"Enable Axis {n} missing in Automatic (L6039)")
+        if not self._drive_on:
+            return None
+        ax = self.axis
+        kind = self.loop.excess
+        if ax.state is AxisState.ERROR_STOP:  # the machine file's following_error_limit: a safety net
+            kind = LAG
+        mode14 = self._monitor_mode
+        if (kind == LAG and mode14 in (0, 3)) or (kind == RUNAWAY and mode14 in (0, 2)):
+            self._homed = False  # errata §3.8
+            what = "Excess Pos Lag" if kind == LAG else "Drive Runaway"
+            return ClmError(axis_fault(0x03 if kind == LAG else 0x02, n),
+                            f"{what}: deviation {self.loop.deviation:.3f} beyond the Ax14 window {self.window:.3f} (L4518-4532)")
+        if mode == "automatic" and self._limits_apply():
+            actual = ax.actual_position
+            if actual < self._min_f:
+                return ClmError(axis_fault(0x06, n), f"actual {actual:.3f} below Ax03 = {self._min_f:.3f} (L4294)")
+            if actual > self._max_f:
+                return ClmError(axis_fault(0x07, n), f"actual {actual:.3f} above Ax04 = {self._max_f:.3f} (L4332)")
+        return None
+
+    def _drive_off(self) -> None:
+        """Drive Enable off at once: the amplifier is disabled, the motion is dropped."""
+        self._drive_on = False
+        self._on_cycles = 0
+        self._con = None
+        self._jog = 0
+        self._kept = self._blocked = self._braking = False
+        self._target = None
+        self.axis.power(False)
+
+    def fault_stop(self) -> None:
+        """After any CLM error: Drive Enable and Brake off at once (spec §7.1), until `clear_fault`."""
+        self._fault = True
+        if self._drive_on:
+            self._drive_off()
+        self._outputs()
+
+    def clear_fault(self) -> None:
+        """External Clear / CL / !sCLEAR: the drive may be enabled again at the next tick."""
+        self._fault = False
+        if self.axis.state is AxisState.ERROR_STOP:
+            self.axis.reset()
+
+    def _outputs(self) -> None:
+        img = self.image
+        on = self._drive_on
+        img.set(self._enable_out, int(on))
+        img.set(self._brake_out, int(on and self._on_cycles >= self._brake_cycles))
+        img.set(self._ax27_out, int(self.in_position))
+        img.set(self._ax28_out, int(self._at_target(self._ax28)))
+        kind = self.loop.excess if on else NONE
+        mode14 = self._monitor_mode
+        silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
+        img.set(self._ax14_out, int(silent))
+
+    # ------------------------------------------------------------------ state
+
+    @property
+    def motion_done(self) -> bool:
+        """The set point has reached its target: nothing running, kept or waiting."""
+        ax = self.axis
+        return (self._con is None and not self._jog and not self._kept and not self._blocked and not self._braking
+                and ax.motion_ended and ax.command_velocity == 0.0)
+
+    @property
+    def in_position(self) -> bool:
+        """The target reached within the Ax27 switching threshold (decision 11)."""
+        return self._at_target(self.threshold)
+
+    def _at_target(self, window: float) -> bool:
+        if not (self._drive_on and self.motion_done):
+            return False
+        goal = self._tf if self._tf is not None else self.axis.command_position
+        return abs(goal - self.axis.actual_position) <= window
+
+    @property
+    def drive_enabled(self) -> bool:
+        return self._drive_on
+
+    @property
+    def faulted(self) -> bool:
+        return self._fault
+
+    @property
+    def _target(self) -> Fraction | None:
+        return self._tx
+
+    @_target.setter
+    def _target(self, value: Fraction | None) -> None:
+        self._tx = value
+        self._tf = None if value is None else float(value)
+
+    @property
+    def target(self) -> float | None:
+        return self._tf
+
+    @property
+    def exact_target(self) -> Fraction | None:
+        """The programmed target in exact IU (lengths x FAK are summed without rounding)."""
+        return self._target
+
+    @property
+    def actual_position(self) -> float:
+        return self.axis.actual_position
+
+    @property
+    def command_position(self) -> float:
+        return self.axis.command_position
+
+    @property
+    def lag(self) -> float:
+        """Set point - actual position (the CLM's position lag)."""
+        return self.axis.command_position - self.axis.actual_position
+
+    @property
+    def actual_velocity(self) -> float:
+        return self.axis.actual_velocity
+
+    @property
+    def remaining_distance(self) -> float:
+        """Target - actual position while a target is programmed (the CTA's rest, L1059)."""
+        return 0.0 if self._tf is None else self._tf - self.axis.actual_position
+
+    @property
+    def rpm(self) -> float:
+        """Encoder speed, 1/min (Status 48): actual velocity / feed constant x 60."""
+        return self.axis.actual_velocity * 60.0 / float(self._feed)
+
+    @property
+    def volts(self) -> float:
+        return self.loop.volts
+
+    def __repr__(self) -> str:
+        return (f"ClmAxis({self.number}, {self.axis_name!r}, drive={'on' if self._drive_on else 'off'}, "
+                f"target={self.target}, actual={self.actual_position:.3f})")

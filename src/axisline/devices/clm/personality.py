@@ -1,0 +1,323 @@
+"""The Rexroth CLM1.4 as a machine personality (docs/clm.md).
+
+    [machine]
+    cycle_us = 2000                    # the CLM's NC cycle: B010 (0.0 = 2 ms for 1-2 axes, 3 / 4 ms for 3 / 4)
+    personality = "clm"
+
+    [device]
+    axes = ["feed"]                    # CLM axes 1, 2, ... = these machine axes (servos, +-10 V)
+    program = "clm/roll_feed.prg"      # the CLM's files (either form, see docs/clm.md)
+    parameters = "clm/roll_feed.par"
+    logic = "clm/roll_feed.lt"
+    variables = "clm/roll_feed.var"
+    memory_file = "roll_feed.clm.json" # the battery-buffered memory: loaded at start when present
+    start_at = 0.05                    # press Start this long after power-on (simulation)
+    report_output = "Q1.00.0"          # the report records the feed error at each rising edge
+    [device.inputs]                    # CLM inputs: true/false, an [io] input, a switch or sensor
+    "I1.00.0" = "press_top"
+    [device.outputs]                   # CLM outputs to [io] outputs
+    "Q1.00.0" = "press_valve"
+
+Each NC cycle (`tick`, every machine cycle): the outputs the CLM set in the previous cycle go to
+the [io] outputs ("Hardware outputs are set at the beginning of the following cycle", L1437),
+the wired inputs are read into the CLM's image, and the runtime runs one cycle (`runtime`).
+Without wiring, the system inputs are those of a machine ready to run: Automatic selected,
+E-Stop and Immediate Stop closed, the configured axes enabled.
+
+The retained memory (program, parameters, Logic Task, V600-V999, counters, M3, M6.00-19) is
+written to `memory_file` whenever it changes, at the end of the NC cycle that changed it, so a
+kill -9 loses nothing the CLM had executed or acknowledged; at the next start it is loaded in
+place of the files.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated, Any, Callable
+
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+
+from axisline.configerrors import ConfigError, FilePath
+from axisline.devices.base import Personality
+from axisline.kernel.atomic import unwritable_reason
+
+from .errors import Finding
+from .files import read_file
+from .memory import ClmMemory, RetainedStore
+from .operands import Operand, parse_operand
+from .runtime import ClmRuntime
+
+__all__ = ["ClmConfig", "ClmPersonality"]
+
+Name = Annotated[str, StringConstraints(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
+Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
+InputName = Annotated[str, StringConstraints(pattern=r"^I[0-2]\.\d\d\.\d$")]
+OutputName = Annotated[str, StringConstraints(pattern=r"^Q[0-2]\.\d\d\.\d$")]
+
+_AUTO_CYCLE_MS = {1: 2.0, 2: 2.0, 3: 3.0, 4: 4.0}  # B010 = 0.0 (spec §1.4)
+_READY = {"I0.00.1": True, "I0.00.2": True, "I0.00.4": True}  # Automatic, E-Stop and Immediate Stop closed
+_ENABLE = {1: "I0.00.5", 2: "I0.00.6", 3: "I0.02.0", 4: "I0.02.3"}
+START = "I0.00.3"
+
+
+class ClmConfig(BaseModel):
+    """The [device] table of personality "clm"."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    axes: list[Name] = Field(min_length=1, max_length=4, description="machine axes that are CLM axes 1, 2, 3, 4 (servos with an encoder)")
+    program: FilePath = Field(None, min_length=1, max_length=4096, description="program file (telegrams or listing), relative to the machine file")
+    parameters: FilePath = Field(None, min_length=1, max_length=4096, description="parameter file (none: the defaults)")
+    logic: FilePath = Field(None, min_length=1, max_length=4096, description="Logic Task file (none: END at 0000)")
+    variables: FilePath = Field(None, min_length=1, max_length=4096, description="variables file (V600-V999)")
+    memory_file: FilePath = Field(
+        None, min_length=1, max_length=4096,
+        description="the battery-buffered memory (JSON): loaded at start when present instead of the files, written when it changes",
+    )
+    inputs: dict[InputName, bool | Signal] = Field(
+        default_factory=dict,
+        description="CLM inputs (I0.00.0 ... I1.10.7): true/false, an [io] input, a switch or a print-mark sensor; "
+        "unwired: Automatic, E-Stop and Immediate Stop closed, the configured axes enabled, the rest 0",
+    )
+    outputs: dict[OutputName, Signal] = Field(default_factory=dict, description="CLM outputs (Q0.00.0 ... Q2.05.7) to [io] outputs")
+    start_at: float | None = Field(None, ge=0.0, le=1e6, description="press Start this many seconds after power-on (none: only the wired input or !START)")
+    report_output: OutputName | None = Field(
+        None, description="the CLM output whose rising edge the report records (the press signal): the position error of axis 1 then"
+    )
+
+
+class ClmPersonality(Personality):
+    """The CLM1.4 on the simulated plant (see the module docstring)."""
+
+    name = "clm"
+    Config = ClmConfig
+    endpoints = ()  # the X6 serial protocol comes with `serial`
+
+    def __init__(self, machine: Any, config: ClmConfig) -> None:
+        super().__init__(machine, config)
+        self.source = getattr(machine, "source", "") or "<machine>"
+        self.base_dir = Path(machine.source).parent if getattr(machine, "source", "") else Path.cwd()
+        problems: list[str] = []
+        mc = machine.config
+        for i, name in enumerate(config.axes):
+            if name not in machine.units:
+                problems.append(f"device.axes[{i}] = {name!r}: no such axis (axes: {', '.join(machine.units) or 'none'})")
+        if mc.machine.logic_every != 1:
+            problems.append(f"machine.logic_every = {mc.machine.logic_every}: the CLM runs every NC cycle (allowed: 1)")
+        for k, step in enumerate(mc.job.steps):
+            if step.command is not None and step.axis in config.axes:
+                problems.append(f"job.steps[{k}].axis = {step.axis!r}: the axis is the CLM's (device.axes); its program commands it")
+        self.memory = ClmMemory()
+        self.memory_path = self._path(config.memory_file)
+        if self.memory_path is not None:
+            reason = unwritable_reason(self.memory_path)
+            if reason is not None:
+                problems.append(f"device.memory_file = {config.memory_file!r}: {self.memory_path} {reason}")
+        self.store = RetainedStore(self.memory_path) if self.memory_path is not None else None
+        self._load(config, problems)
+        self._inputs = self._wire_inputs(config, problems)
+        self._outputs = self._wire_outputs(config, problems)
+        self._check_cycle(problems)
+        if problems:
+            raise ConfigError(self.source, problems)
+        from .axis import ClmAxis
+
+        cycle_s = float(machine.period)
+        axes = {n: ClmAxis(n, machine, name, self.memory.parameters, self.memory.image, cycle_s) for n, name in enumerate(config.axes, start=1)}
+        self.rt = ClmRuntime(self.memory, axes, cycle_s)
+        self.rt.on_move = self._moved
+        self._start_cycle = None if config.start_at is None else math.ceil(config.start_at / cycle_s - 1e-9)
+        self._report = None if config.report_output is None else parse_operand(config.report_output, bit=True)
+        self._report_previous = 0
+        self.records: list[dict[str, Any]] = []
+        self._targets: dict[int, float] = {}
+        self._ever_ran = False
+        self.store_error: str | None = None
+
+    # -- construction ----------------------------------------------------------------------
+
+    def _path(self, name: str | None) -> Path | None:
+        if name is None:
+            return None
+        p = Path(name)
+        return p if p.is_absolute() else self.base_dir / p
+
+    def _load(self, config: ClmConfig, problems: list[str]) -> None:
+        """The retained memory when present, else the files; a file with an error is refused whole."""
+        if self.store is not None and self.store.exists():
+            try:
+                self.store.load(self.memory)
+            except ValueError as e:
+                problems.append(f"device.memory_file = {config.memory_file!r}: {e}")
+            return
+        for key, kind in (("program", "program"), ("parameters", "parameters"), ("logic", "logic"), ("variables", "variables")):
+            name = getattr(config, key)
+            path = self._path(name)
+            if path is None:
+                continue
+            loaded = read_file(path, kind)
+            errors = [f for f in loaded.findings if f.is_error]
+            if errors:
+                problems += [f"device.{key} = {name!r}: {_finding(f)}" for f in errors[:10]]
+                continue
+            if kind == "program":
+                self.memory.program = loaded.data  # type: ignore[assignment]
+            elif kind == "parameters":
+                self.memory.parameters = loaded.data  # type: ignore[assignment]
+            elif kind == "logic":
+                self.memory.logic = loaded.data  # type: ignore[assignment]
+            else:
+                for n, v in loaded.data.items():  # type: ignore[union-attr]
+                    self.memory.variables.write(n, v, by="serial")
+
+    def _wire_inputs(self, config: ClmConfig, problems: list[str]) -> list[tuple[Operand, Callable[[], bool] | bool]]:
+        wiring: dict[str, bool | str] = dict(_READY)
+        for n in range(1, len(config.axes) + 1):
+            wiring[_ENABLE[n]] = True
+        wiring.update(config.inputs)
+        out: list[tuple[Operand, Callable[[], bool] | bool]] = []
+        for name, value in sorted(wiring.items()):
+            try:
+                op = parse_operand(name, bit=True)
+            except ValueError as e:
+                problems.append(f"device.inputs.{name}: {e}")
+                continue
+            try:
+                out.append((op, value if isinstance(value, bool) else self.machine.signal(value)))
+            except ValueError as e:  # ConfigError from machine.signal too
+                problems.append(f"device.inputs.{name} = {value!r}: {'; '.join(getattr(e, 'problems', [str(e)]))}")
+        return out
+
+    def _wire_outputs(self, config: ClmConfig, problems: list[str]) -> list[tuple[Operand, str]]:
+        out = []
+        for name, io_name in sorted(config.outputs.items()):
+            try:
+                op = parse_operand(name, bit=True)
+            except ValueError as e:
+                problems.append(f"device.outputs.{name}: {e}")
+                continue
+            if io_name not in self.machine.config.io.outputs:
+                problems.append(f"device.outputs.{name} = {io_name!r}: no such io output (outputs: {', '.join(self.machine.config.io.outputs) or 'none'})")
+                continue
+            out.append((op, io_name))
+        return out
+
+    def _check_cycle(self, problems: list[str]) -> None:
+        """machine.cycle_us must be the CLM's NC cycle, B010 (issue 12; spec §1.4)."""
+        b010 = float(self.memory.parameters.get("B010")["cycle_time"])
+        axes = max(len(self.config.axes), max(self.memory.parameters.enabled_axes(), default=1))  # type: ignore[attr-defined]
+        ms = b010 if b010 else _AUTO_CYCLE_MS[min(4, axes)]
+        cycle_us = self.machine.config.machine.cycle_us
+        if abs(cycle_us - ms * 1000) > 0.5:
+            problems.append(
+                f"machine.cycle_us = {cycle_us}: the CLM's NC cycle is {ms:g} ms (B010 = {b010:g}"
+                + (f", 0.0 = automatic for {axes} axes" if not b010 else "") + f"): set cycle_us = {round(ms * 1000)}"
+            )
+
+    # -- the cycle ---------------------------------------------------------------------------
+
+    def tick(self, cycle: int) -> None:
+        image = self.memory.image
+        io = self.machine.io
+        for op, name in self._outputs:  # last cycle's outputs reach the hardware now
+            io.write(name, bool(image.get(op)))
+        if self._report is not None:  # the press gets its signal now: record the feed there
+            now = image.get(self._report)
+            if now and not self._report_previous:
+                self._record(cycle)
+            self._report_previous = now
+        for op, source in self._inputs:
+            image.set(op, int(source if isinstance(source, bool) else source()))
+        if self._start_cycle is not None:
+            image.set(_START, int(cycle == self._start_cycle))
+        self.rt.step()
+        self._ever_ran = self._ever_ran or self.rt.modes.running
+        if self.store is not None:
+            try:
+                self.store.save(self.memory)
+                self.store_error = None
+            except OSError as e:  # the CLM keeps running; the error is reported, not a traceback
+                self.store_error = f"{self.store.path}: {e.strerror or e}"
+
+    def _moved(self, axis: Any, task: Any) -> None:
+        self._targets[axis.number] = float(axis.target)
+
+    def _record(self, cycle: int) -> None:
+        axis = self.rt.axes.get(1)
+        if axis is None:
+            return
+        target = self._targets.get(1, float(axis.target))
+        actual = axis.actual_position
+        counts = getattr(self.machine.units[self.config.axes[0]].encoder, "counts_per_unit", None)
+        self.records.append({
+            "feed": len(self.records) + 1,
+            "time_s": round(cycle * self.machine.period, 6),
+            "target": target,
+            "actual": actual,
+            "error": actual - target,
+            "error_counts": None if counts is None else round((actual - target) * counts, 3),
+        })
+
+    @property
+    def finished(self) -> bool:  # type: ignore[override]
+        """The program ran and has stopped (JST, a fault): a batch is done."""
+        return self._ever_ran and not self.rt.modes.running
+
+    # -- persistence and reporting -------------------------------------------------------------
+
+    def store_paths(self) -> list[Path]:
+        return [self.memory_path] if self.memory_path is not None else []
+
+    def persist(self) -> list[Path]:
+        if self.store is None:
+            return []
+        self.store.save(self.memory, force=True)
+        return [self.store.path]
+
+    def summary(self) -> dict[str, Any]:
+        modes = self.rt.modes
+        errors = [abs(r["error"]) for r in self.records]
+        fault = modes.fault_error
+        return {
+            "headline": (
+                f"CLM: {modes.mode}, {len(self.records)} feed(s) recorded"
+                + (f", largest error {max(errors):.4f}" if errors else "")
+                + (f", fault {fault.code} {fault.text}" if fault is not None else "")
+            ),
+            "mode": modes.mode,
+            "fault": None if fault is None else {"code": fault.code, "text": fault.text, "where": fault.where, "detail": fault.detail},
+            "tasks": [{"task": t.number, "instruction": t.pc, "running": t.running} for t in self.rt.tasks],
+            "counters": {f"{n:04d}": c for n, c in sorted(self.memory.program.counters.items())},
+            "feeds": self.records,
+            "max_abs_error": max(errors) if errors else None,
+            "store_error": self.store_error,
+        }
+
+    def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
+        lines = ["## CLM1.4", "", f"Mode at the end: {device_summary['mode']}."]
+        fault = device_summary.get("fault")
+        if fault:
+            lines.append(f"Fault {fault['code']} {fault['text']} at {fault['where'] or '-'}: {fault['detail']}")
+        feeds = device_summary.get("feeds") or []
+        if feeds:
+            lines += ["", "Position error of axis 1 when the press signal came:", "",
+                      "| feed | time s | target | actual | error | error (counts) |", "|---|---|---|---|---|---|"]
+            lines += [f"| {r['feed']} | {r['time_s']:.3f} | {r['target']:.4f} | {r['actual']:.4f} | {r['error']:+.4f} | {r['error_counts']} |" for r in feeds]
+        return "\n".join(lines) + "\n"
+
+    def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
+        out: dict[str, tuple[Callable[[], Any], str, type]] = {
+            "clm.task1": (lambda: self.rt.tasks[0].pc, "", int),
+            "clm.running": (lambda: self.rt.modes.running, "", bool),
+        }
+        for n, axis in self.rt.axes.items():
+            out[f"clm.axis{n}.lag"] = (lambda a=axis: a.lag, "IU", float)
+        return out
+
+
+_START = parse_operand(START, bit=True)
+
+
+def _finding(f: Finding) -> str:
+    return str(f)[:300]
