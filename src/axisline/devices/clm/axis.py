@@ -495,12 +495,15 @@ class ClmAxis:
         on = self._drive_on
         img.set(self._enable_out, int(on))
         img.set(self._brake_out, int(on and self._on_cycles >= self._brake_cycles))
-        img.set(self._ax27_out, int(self.in_position))
-        img.set(self._ax28_out, int(self._at_target(self._ax28)))
-        kind = self.loop.excess if on else NONE
-        mode14 = self._monitor_mode
-        silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
-        img.set(self._ax14_out, int(silent))
+        if not self._ax27_out.unset:  # (an output not programmed, 00.00.0, costs nothing)
+            img.set(self._ax27_out, int(self.in_position))
+        if not self._ax28_out.unset:
+            img.set(self._ax28_out, int(self._at_target(self._ax28)))
+        if not self._ax14_out.unset:
+            kind = self.loop.excess if on else NONE
+            mode14 = self._monitor_mode
+            silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
+            img.set(self._ax14_out, int(silent))
 
     # ------------------------------------------------------------------ state
 

@@ -74,32 +74,36 @@ class ProcessImage:
         """Where `op` lives: (index into ``data``, shift, mask of the value after the shift).
 
         A bit gives mask 1; a byte gives shift 0 and the mask of the bits the byte has.
+        Remembered per operand: the NC tasks and the mode machine ask for the same few every
+        cycle, and an operand never moves.
         """
-        start, count = LAYOUT.get(op.key, (0, -1))
-        if not 0 <= op.byte < count:
-            raise ValueError(f"{op} is not an input, output or marker of the CLM")
-        at = start + op.byte
-        if op.bit is None:
-            return at, 0, _VALID[at]
-        if not 0 <= op.bit < 8 or not _VALID[at] >> op.bit & 1:
-            raise ValueError(f"{op} is not an input, output or marker of the CLM")
-        return at, op.bit, 1
+        place = _PLACES.get(op)
+        if place is None:
+            place = _PLACES[op] = _locate(op)
+        return place
 
     def get(self, op: Operand) -> int:
         """A bit as 0/1, a byte as 0..255 (bit 7 the most significant)."""
-        if op.unset:
-            return 0
-        at, shift, mask = self.locate(op)
+        place = _PLACES.get(op)
+        if place is None:
+            if op.unset:
+                return 0
+            place = self.locate(op)
+        at, shift, mask = place
         return self.data[at] >> shift & mask
 
     def set(self, op: Operand, value: int) -> None:
         """Write a bit (0/1) or a byte (0..255; bits the byte does not have are dropped)."""
-        if op.unset:
-            return
-        at, shift, mask = self.locate(op)
+        place = _PLACES.get(op)
+        if place is None:
+            if op.unset:
+                return
+            place = self.locate(op)
+        at, shift, mask = place
         if not 0 <= value <= (1 if op.bit is not None else 0xFF):
             raise ValueError(f"{op} = {value}: a {'bit is 0 or 1' if op.bit is not None else 'byte is 0..255'}")
-        self.data[at] = self.data[at] & ~(mask << shift) | (value & mask) << shift
+        data = self.data
+        data[at] = data[at] & ~(mask << shift) | (value & mask) << shift
 
     def copy(self) -> ProcessImage:
         return ProcessImage(bytearray(self.data))
@@ -114,3 +118,19 @@ class ProcessImage:
                 for (area, source), (start, count) in LAYOUT.items()
                 for byte in range(count) if self.data[start + byte]]
         return f"ProcessImage({', '.join(used)})"
+
+
+_PLACES: dict[Operand, tuple[int, int, int]] = {}  # at most the CLM's few thousand operands
+
+
+def _locate(op: Operand) -> tuple[int, int, int]:
+    start, count = LAYOUT.get(op.key, (0, -1))
+    if not 0 <= op.byte < count:
+        raise ValueError(f"{op} is not an input, output or marker of the CLM")
+    at = start + op.byte
+    if op.bit is None:
+        return at, 0, _VALID[at]
+    if not 0 <= op.bit < 8 or not _VALID[at] >> op.bit & 1:
+        raise ValueError(f"{op} is not an input, output or marker of the CLM")
+    return at, op.bit, 1
+

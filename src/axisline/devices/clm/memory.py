@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 from ...kernel import atomic_write_text
@@ -45,8 +46,15 @@ class Variables:
     def __init__(self) -> None:
         self.values = [0] * VARIABLE_COUNT
         self.version = 0
+        #: the CLM's live system variables (V000-V599), computed when read: the runtime's
+        #: `system_value` (None: the stored value, e.g. V047 set while not homed)
+        self.system: Callable[[int], int | None] | None = None
 
     def __getitem__(self, number: int) -> int:
+        if number < USER_VARIABLES and self.system is not None:
+            live = self.system(number)
+            if live is not None:
+                return live
         return self.values[number]
 
     def write(self, number: int, raw: int, *, by: str = "nc", homing_exempt: bool = False) -> None:
@@ -134,11 +142,13 @@ class ClmMemory:
         self._zero(*_OUTPUTS, _M2, _M4, _M5, _M6_CLEARED)
 
     def power_on(self) -> None:
-        """After a (simulated) power cut: everything but the retained markers is 0."""
-        keep = [(name, bytes(self.image.data[s])) for name, s in _RETAINED]
-        self.image = ProcessImage()
-        for name, data in keep:
-            self.image.data[dict(_RETAINED)[name]] = data
+        """After a (simulated) power cut: everything but the retained markers is 0 (in place:
+        the axes and the Logic Task hold the image)."""
+        data = self.image.data
+        keep = [(s, bytes(data[s])) for _, s in _RETAINED]
+        data[:] = bytes(len(data))
+        for s, kept in keep:
+            data[s] = kept
 
     # -- retained state ------------------------------------------------------------------
 

@@ -44,6 +44,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from .errors import ClmError, axis_fault
+from .image import ProcessImage
 from .operands import Operand
 
 if TYPE_CHECKING:
@@ -77,14 +78,23 @@ class ModeMachine:
         self.manual_vector = False
         self._pending_interrupt = False
         self._previous: dict[Operand, int] = {}
+        self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, *ENABLE.values())}
+        self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK)]
         self.enabled_axes: frozenset[int] = frozenset()
         self._feed_interrupted: set[int] = set()
+        # parameter values read every cycle, taken when Parameter mode is left (they change
+        # only there): the Ax15 inputs per axis, B014, B015, B018
+        self._feed_inputs: list[tuple[int, tuple[Operand, ...]]] = []
+        self._b014: tuple[Operand | None, int, int] = (None, 0, 0)
+        self._b015: tuple[Operand | None, int, int, int] = (None, 0, 0, 0)
+        self._b018: tuple[int, tuple[int, ...]] = (0, (0,) * 7)
         self._stopped_tasks: set[int] = set()  # running when Immediate Stop / JST / !STOP came
 
     # -- inputs ---------------------------------------------------------------------------
 
     def _bit(self, op: Operand) -> int:
-        return self.rt.image.get(op)
+        at, shift, _ = self._places.get(op) or self.rt.image.locate(op)
+        return self.rt.image.data[at] >> shift & 1
 
     def _rising(self, op: Operand) -> bool:
         now, before = self._bit(op), self._previous.get(op, 0)
@@ -160,7 +170,7 @@ class ModeMachine:
                 if not self.axis_enable_input(n):
                     self.fault(ClmError(axis_fault(0x00, n), f"Automatic selected without Enable Axis {n}"))
                     return
-        elif wanted == "manual" and self._vector_parameter("start_on_mode_change") == 1:
+        elif wanted == "manual" and self._b014[1] == 1:
             self._start_manual_vector()
 
     def _leave_parameter_mode(self) -> None:
@@ -168,6 +178,7 @@ class ModeMachine:
         params = rt.memory.parameters
         rt.memory.leave_parameter_mode()
         self.enabled_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
+        self._take_parameters()
         for axis in rt.axes.values():
             axis.configure(params)
         errors = params.errors()
@@ -182,6 +193,23 @@ class ModeMachine:
         task3 = int(params.get("B011")["task_3_start"])
         if task3:
             rt.tasks[2].start(task3)
+
+    def _take_parameters(self) -> None:
+        params = self.rt.memory.parameters
+        self._feed_inputs = []
+        for n in sorted(self.enabled_axes):
+            value = params.get(f"A{n}15")
+            ops = tuple(op for op in (value["interrupt_input"], value["feed_angle_input"]) if not op.unset)
+            if ops:
+                self._feed_inputs.append((n, ops))
+        b014 = params.get("B014")
+        op = b014["start_input"]
+        self._b014 = (None if op.unset else op, int(b014["start_on_mode_change"]), int(b014["start_instruction"]))
+        b015 = params.get("B015")
+        op = b015["interrupt_input"]
+        self._b015 = (None if op.unset else op, int(b015["vector_mode"]), int(b015["interrupt_positioning"]), int(b015["interrupt_address"]))
+        b018 = params.get("B018")
+        self._b018 = (int(b018["fault_code_output"]), tuple(int(b018[f"clear_q1_{byte:02d}"]) for byte in range(7)))
 
     def task_may_run(self, task: NcTask) -> bool:
         if not task.running or self.mode == "parameter":
@@ -265,10 +293,8 @@ class ModeMachine:
     def _interrupt_inputs(self) -> None:
         """Ax15 Interrupt / Feed Angle Monitoring: lost -> the axis' positioning stops and none
         starts; back -> it goes on without Start (§5.5)."""
-        params = self.rt.memory.parameters
-        for n in self.enabled_axes:
-            value = params.get(f"A{n}15")
-            lost = any(not op.unset and not self._bit(op) for op in (value["interrupt_input"], value["feed_angle_input"]))
+        for n, ops in self._feed_inputs:
+            lost = not all(self._bit(op) for op in ops)
             if lost and n not in self._feed_interrupted:
                 self._feed_interrupted.add(n)
                 self.rt.axes[n].immediate_stop()
@@ -278,21 +304,19 @@ class ModeMachine:
 
     def _interrupt_vector(self) -> None:
         """B015: an edge on its input sends Task 1 to the interrupt program, no return (§7.4)."""
-        value = self.rt.memory.parameters.get("B015")
-        op: Operand = value["interrupt_input"]
-        if op.unset:
+        op, mode, positioning, address = self._b015
+        if op is None:
             return
-        mode = int(value["vector_mode"])
         if self._edge(op, falling=mode in (2, 3)) and self.running:
             self._pending_interrupt = True
         task = self.rt.tasks[0]
         if self._pending_interrupt and (mode in (1, 3) or not task.stack):
             self._pending_interrupt = False
-            if int(value["interrupt_positioning"]):
+            if positioning:
                 for axis in self.rt.axes.values():
                     axis.stop_motion()
             task.stack.clear()
-            task.pc, task.wait = int(value["interrupt_address"]), None
+            task.pc, task.wait = address, None
 
     # -- Manual ---------------------------------------------------------------------------------
 
@@ -303,21 +327,12 @@ class ModeMachine:
             direction = (plus - minus) if run_allowed and self.feed_allowed(n) and not self.manual_vector else 0
             self.rt.axes[n].jog(direction)
         self._interrupt_inputs()
-        op = self._vector_input()
+        op = self._b014[0]
         if op is not None and self._rising(op) and not self.manual_vector:
             self._start_manual_vector()
 
-    def _vector_parameter(self, name: str) -> int:
-        return int(self.rt.memory.parameters.get("B014")[name])
-
-    def _vector_input(self) -> Operand | None:
-        op: Operand = self.rt.memory.parameters.get("B014")["start_input"]
-        return None if op.unset else op
-
     def _start_manual_vector(self) -> None:
-        start = self._vector_parameter("start_instruction")
-        task = self.rt.tasks[0]
-        task.start(start)
+        self.rt.tasks[0].start(self._b014[2])
         self.manual_vector = True
 
     def end_manual_vector(self) -> None:
@@ -341,7 +356,7 @@ class ModeMachine:
         for axis in rt.axes.values():
             axis.fault_stop()
         rt.memory.fault()
-        self._b018(on_fault=True)
+        self._clear_outputs_b018(on_fault=True)
 
     def clear(self) -> None:
         """External Clear, the CL key, ``!CLEAR``: only when the cause is gone (E-Stop closed,
@@ -352,7 +367,7 @@ class ModeMachine:
             return
         if self.fault_error.code == "08" and self._wanted() == "invalid":
             return
-        self._b018(on_fault=False)
+        self._clear_outputs_b018(on_fault=False)
         self.fault_error = None
         self.restart_from_zero = True
         for axis in self.rt.axes.values():  # the drives may be enabled again
@@ -365,12 +380,10 @@ class ModeMachine:
             except ClmError as e:
                 self.fault(e)
 
-    def _b018(self, on_fault: bool) -> None:
+    def _clear_outputs_b018(self, on_fault: bool) -> None:
         """B018 per output byte Q1.00-Q1.06: 0 cleared on the fault, 1 cleared when it is
         cleared, 2 never (spec §5.3)."""
-        value = self.rt.memory.parameters.get("B018")
-        for byte in range(7):
-            digit = int(value[f"clear_q1_{byte:02d}"])
+        for byte, digit in enumerate(self._b018[1]):
             if (digit == 0 and on_fault) or (digit == 1 and not on_fault):
                 self.rt.write_byte(Operand("Q", 1, byte), 0)
 
@@ -378,12 +391,11 @@ class ModeMachine:
 
     def outputs(self) -> None:
         image = self.rt.image
-        image.set(Q_MANUAL, int(self.mode == "manual"))
-        image.set(Q_AUTOMATIC, int(self.mode == "automatic"))
-        image.set(Q_PARAMETER, int(self.mode == "parameter"))
-        image.set(Q_ERROR, int(self.fault_error is None))
-        image.set(Q_RUN_TASK, int(self.running))
-        selector = int(self.rt.memory.parameters.get("B018")["fault_code_output"])
+        data = image.data
+        mode, ok = self.mode, self.fault_error is None
+        for (at, shift, _), on in zip(self._output_places, (mode == "manual", mode == "automatic", mode == "parameter", ok, self.running)):
+            data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
+        selector = self._b018[0]
         if 1 <= selector <= 6 and self.fault_error is not None:
             code = self.fault_error.code
             image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)

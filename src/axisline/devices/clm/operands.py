@@ -45,7 +45,7 @@ Decisions (spec line -> choice, why)
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .errors import ClmError
 
@@ -96,6 +96,14 @@ class Operand:
     source: int
     byte: int
     bit: int | None = None  # None: a byte operand
+    # the image looks an operand up in a dict several times a cycle: hash it once
+    _hash: int = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_hash", hash((self.area, self.source, self.byte, self.bit)))
+
+    def __hash__(self) -> int:
+        return self._hash
 
     @property
     def is_bit(self) -> bool:

@@ -44,6 +44,7 @@ from axisline.kernel.atomic import unwritable_reason
 
 from .errors import Finding
 from .files import read_file
+from .image import ProcessImage
 from .memory import ClmMemory, RetainedStore
 from .operands import Operand, parse_operand
 from .runtime import ClmRuntime
@@ -118,6 +119,9 @@ class ClmPersonality(Personality):
         self._load(config, problems)
         self._inputs = self._wire_inputs(config, problems)
         self._outputs = self._wire_outputs(config, problems)
+        # where each wired bit lives in the image, found once
+        self._input_places = [(ProcessImage.locate(op), source) for op, source in self._inputs]
+        self._output_places = [(ProcessImage.locate(op), name) for op, name in self._outputs]
         self._check_cycle(problems)
         if problems:
             raise ConfigError(self.source, problems)
@@ -219,16 +223,18 @@ class ClmPersonality(Personality):
 
     def tick(self, cycle: int) -> None:
         image = self.memory.image
+        data = image.data
         io = self.machine.io
-        for op, name in self._outputs:  # last cycle's outputs reach the hardware now
-            io.write(name, bool(image.get(op)))
+        for (at, shift, _), name in self._output_places:  # last cycle's outputs reach the hardware now
+            io.write(name, bool(data[at] >> shift & 1))
         if self._report is not None:  # the press gets its signal now: record the feed there
             now = image.get(self._report)
             if now and not self._report_previous:
                 self._record(cycle)
             self._report_previous = now
-        for op, source in self._inputs:
-            image.set(op, int(source if isinstance(source, bool) else source()))
+        for (at, shift, _), source in self._input_places:  # the wired inputs into the image
+            on = source if source.__class__ is bool else source()
+            data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
         if self._start_cycle is not None:
             image.set(_START, int(cycle == self._start_cycle))
         self.rt.step()

@@ -24,8 +24,9 @@ Decisions (spec line -> choice, why)
    ``tests/devices/clm/test_runtime.py::test_logic_task_scan_takes_its_time``.
 2. C-SYSVAR, §5.6 Fig. 5-1/5-2: V000 counts every NC cycle, V001 the cycles while the program
    runs in Automatic, V002-V006 hold the tasks' instruction numbers, Vx00/Vx03/Vx04/Vx10 the
-   axes' actual position, lag, actual velocity and remaining distance, refreshed at the start of
-   each cycle (what every task of that cycle reads). Test: ``test_system_variables``.
+   axes' actual position, lag, actual velocity and remaining distance; each is the live value
+   when it is read (the axes' values are those sampled at the cycle's start). Test:
+   ``test_system_variables``.
 """
 
 from __future__ import annotations
@@ -65,6 +66,8 @@ class ClmRuntime:
         self._lt_scan: tuple[int, Any] | None = None  # (cycle its writes appear, image snapshot)
         self.on_move: Callable[[Any, NcTask], None] | None = None  # the report's hook
         self.modes = ModeMachine(self)
+        self._run_cycles = 0  # V001
+        memory.variables.system = self.system_value
 
     # -- the cycle -------------------------------------------------------------------------
 
@@ -74,7 +77,8 @@ class ClmRuntime:
 
     def step(self) -> None:
         """One NC cycle (the inputs already sampled into the image)."""
-        self._system_variables()
+        if self.modes.running:
+            self._run_cycles += 1
         try:
             self.modes.evaluate()
             self._logic_task()
@@ -234,17 +238,18 @@ class ClmRuntime:
 
     # -- system variables ---------------------------------------------------------------------
 
-    def _system_variables(self) -> None:
-        v = self.memory.variables
-        v.set_system(0, self.cycle * _SCALE)
-        if self.modes.running:
-            v.set_system(1, v[1] + _SCALE)
-        for task in self.tasks:
-            v.set_system(1 + task.number, task.pc * _SCALE)
-        v.set_system(19, int(self.cycle * self.nc_cycle_s / 3600) * _SCALE)
-        for n, axis in self.axes.items():
-            base = 100 * n
-            v.set_system(base, round(axis.actual_position * _SCALE))
-            v.set_system(base + 3, round(axis.lag * _SCALE))
-            v.set_system(base + 4, round(axis.actual_velocity * _SCALE))
-            v.set_system(base + 10, round(axis.remaining_distance * _SCALE))
+    def system_value(self, number: int) -> int | None:
+        """A live system variable (decision C-SYSVAR), None for one the CLM keeps stored."""
+        if number == 0:
+            return self.cycle * _SCALE
+        if number == 1:
+            return self._run_cycles * _SCALE
+        if 2 <= number <= 6:
+            return self.tasks[number - 2].pc * _SCALE
+        if number == 19:
+            return int(self.cycle * self.nc_cycle_s / 3600) * _SCALE
+        axis = self.axes.get(number // 100) if number >= 100 else None
+        if axis is None:
+            return None
+        value = {0: axis.actual_position, 3: axis.lag, 4: axis.actual_velocity, 10: axis.remaining_distance}.get(number % 100)
+        return None if value is None else round(value * _SCALE)
