@@ -11,7 +11,9 @@
 - fs701: the flying shear line of examples/flying_shear.toml after commissioning, simulated
   seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time);
   and the cut accuracy of the three FS701 examples (issue 4's quality bars: deterministic
-  figures in carriage increments, no timing).
+  figures in carriage increments, no timing);
+- clm: the roll feed of examples/roll_feed_clm.toml (CLM1.4 program, Logic Task, press) at its
+  2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
@@ -24,6 +26,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from bench_clm import bench_clm  # noqa: E402
 from bench_cycle import bench_cycle  # noqa: E402
 from bench_compax import bench_compax  # noqa: E402
 from bench_fs701 import bench_fs701, cut_accuracy  # noqa: E402
@@ -45,6 +48,8 @@ def main() -> None:
     cut_accuracy()
     print()
     bench_compax()
+    print()
+    bench_clm()
 
 
 if __name__ == "__main__":
