@@ -23,7 +23,7 @@ def machine(tmp_path: Path, program: str, params: dict[str, str] | None = None, 
     text = text.replace('program = "clm/roll_feed.prg"', f'program = "{prg.as_posix()}"')
     text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{(tmp_path / "test.par").as_posix()}"')
     text = text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
-    text = text.replace(f"duration = 60.0", f"duration = {duration}")
+    text = text.replace("duration = 60.0", f"duration = {duration}")
     path = tmp_path / "m.toml"
     path.write_text(text)
     return Machine.from_file(path)
