@@ -254,3 +254,31 @@ def test_nc_write_to_a_logic_task_output_has_no_effect():
     rig.start()
     rig.run(5)
     assert rig.bit("Q1.00.1") == 1 and rig.bit("Q1.00.0") == 0
+
+
+def test_jtk_sends_another_task_elsewhere():
+    """L2083-2101: 'JTK 0100 2' in Task 1 -> Task 2 continues at 0100; in its own task it is a JMP."""
+    program = ("0000 WAI 00.010\n0001 JTK 0300 2\n0002 JTK 0005 1\n0005 JST 0005\n"
+               "0200 JMP 0200\n0300 AEA M2.00.0 1\n0301 JMP 0301\n")
+    rig = Rig(program, params={"B011": "0200 0000 0"})
+    rig.run()
+    rig.start()
+    rig.run(8)
+    assert rig.bit("M2.00.0") == 1 and rig.rt.tasks[1].pc == 301
+    assert rig.rt.tasks[0].pc == 5
+
+
+def test_cst_drops_subroutine_levels():
+    """L1818-1842: 'CST t l': l = 1..9 corrects the stack by l levels, 0 clears it; then an RTS
+    returns across several levels (and after CST x 0 it is an RTS nesting error)."""
+    program = "0000 JSR 0010\n0001 JST 0001\n0010 JSR 0020\n0020 JSR 0030\n0030 CST 1 2\n0031 RTS\n"
+    rig = Rig(program)
+    rig.run()
+    rig.start()
+    rig.run(6)
+    assert rig.rt.tasks[0].pc == 1 and rig.fault is None  # straight back to the main program
+    rig = Rig("0000 JSR 0010\n0010 CST 1 0\n0011 RTS\n")
+    rig.run()
+    rig.start()
+    rig.run(3)
+    assert rig.fault == "0C"
