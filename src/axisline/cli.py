@@ -327,6 +327,71 @@ def clm_checksum(telegram: str = typer.Argument(..., help="telegram from its con
     raise typer.Exit(checksum_command(telegram, lambda s: out.print(s, markup=False, highlight=False, soft_wrap=True)))
 
 
+@clm_app.command("save")
+def clm_save(
+    directory: Path = typer.Argument(..., help="directory for program.txt, parameters.txt, logic.txt, variables.txt"),
+    connect: str = typer.Option(..., "--connect", help="the CLM's serial endpoint HOST:PORT (axisline serve --serial-tcp)"),
+    station: int = typer.Option(0, "--station", min=0, max=32, help="B003 station number (0 = RS232)"),
+) -> None:
+    """Back up a running CLM: read program, parameters, Logic Task and V600-V999 into transfer files."""
+    from .devices.clm.client import ClmClient, parse_address
+    from .devices.clm.errors import ClmError
+
+    try:
+        host, port = parse_address(connect)
+        with ClmClient(host, port, station) as clm:
+            files = clm.save(directory)
+    except (ClmError, OSError, ValueError) as e:
+        console.print(f"[red]clm save failed[/red]: {e}", markup=True, highlight=False)
+        raise typer.Exit(2) from None
+    for kind, path in files.items():
+        out.print(f"{path}: {kind}", markup=False, highlight=False)
+
+
+@clm_app.command("display")
+def clm_display(
+    connect: str = typer.Option(..., "--connect", help="the CLM's serial endpoint HOST:PORT (axisline serve --serial-tcp)"),
+    screen: str = typer.Option("position", "--screen", help="position, io, variables, counters, tasks or error"),
+    once: bool = typer.Option(False, "--once", help="print the screen once and exit"),
+    station: int = typer.Option(0, "--station", min=0, max=32, help="B003 station number (0 = RS232)"),
+    variable: int = typer.Option(600, "--variable", min=0, max=999, help="variables screen: the variable number"),
+    counter: int = typer.Option(0, "--counter", min=0, max=2999, help="counters screen: the COU/BAC instruction"),
+    io_bytes: str = typer.Option("I0.00,I1.00,Q1.00", "--bytes", help="io screen: bytes, comma-separated"),
+    interval: float = typer.Option(0.5, "--interval", min=0.05, max=60.0, help="refresh period, s"),
+) -> None:
+    """Show a CTA screen of a running CLM as text, refreshed until Ctrl-C (status queries)."""
+    import time
+
+    from rich.live import Live
+    from rich.text import Text
+
+    from .devices.clm.client import SCREENS, ClmClient, parse_address
+    from .devices.clm.errors import ClmError
+
+    if screen not in SCREENS:
+        console.print(f"[red]--screen[/red] = {screen!r}: one of {', '.join(SCREENS)}")
+        raise typer.Exit(2)
+    wanted = tuple(b.strip() for b in io_bytes.split(",") if b.strip())
+    try:
+        host, port = parse_address(connect)
+        with ClmClient(host, port, station) as clm:
+            def lines() -> str:
+                return "\n".join(clm.screen(screen, variable=variable, counter=counter, io_bytes=wanted))
+
+            if once:
+                out.print(lines(), markup=False, highlight=False)
+                return
+            with Live(Text(lines()), console=out, auto_refresh=False) as live:
+                while True:
+                    time.sleep(interval)
+                    live.update(Text(lines()), refresh=True)
+    except KeyboardInterrupt:
+        return
+    except (ClmError, OSError, ValueError) as e:
+        console.print(f"[red]clm display failed[/red]: {e}", markup=True, highlight=False)
+        raise typer.Exit(2) from None
+
+
 @app.command()
 def schema(out_file: Optional[Path] = typer.Option(None, "--out", help="write to this file instead of printing")) -> None:
     """Print the machine-file reference (every key: type, default, allowed range, meaning)."""

@@ -90,6 +90,9 @@ class FakeAxis:
     def clear_fault(self) -> None:
         self.stops.append("clear")
 
+    def interface_enable(self, on: bool) -> None:
+        self.stops.append("on" if on else "off")
+
     def set_actual(self, position: float) -> None:
         self.actual_position = position
         self.target = round(position * 1000)

@@ -223,3 +223,29 @@ def test_interrupt_vector_sends_task_1_to_its_program():
     rig.set("I1.00.5", 1)
     rig.run(3)
     assert rig.bit("Q1.00.3") == 1 and rig.rt.tasks[0].stack == []
+
+
+def test_interface_switches_an_axis_off_until_mxon_or_an_estop():
+    """Spec §8.6 !MxOFF: a command to the axis is fault 4E, its enable loss is no error; the state
+    survives mode changes; !MxON or an E-Stop switch it on again."""
+    rig = Rig("0000 POI 1 +000010.000 999\n0001 JST 0001\n", mode="manual")
+    rig.run()
+    rig.rt.modes.interface_enable(1, False)
+    rig.set_mode("automatic")
+    rig.set("I0.00.5", 0)  # its enable input may go: no 40
+    rig.run()
+    assert rig.fault is None and rig.axes[1].stops[-1] == "off"
+    rig.set("I0.00.5", 1)
+    rig.start()
+    assert rig.fault == "4E"
+    rig.set("I0.00.2", 0)  # E-Stop
+    rig.run()
+    assert 1 in rig.rt.modes.enabled_axes and rig.axes[1].stops[-1] == "on"
+
+
+def test_time_counter_clears():
+    rig = Rig("0000 JMP 0000\n", cycle_s=0.004)
+    rig.rt.cycle = 1_000_000  # 4000 s of running
+    assert rig.var(19) == 1.0
+    rig.rt.clear_time_counter()
+    assert rig.var(19) == 0.0

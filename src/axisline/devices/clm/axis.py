@@ -128,6 +128,7 @@ class ClmAxis:
         self._drive_on = False
         self._on_cycles = 0
         self._fault = False
+        self._switched_on = True  # !MxON / !MxOFF (kept through mode changes and faults)
         self._homed = False
         self._tx: Fraction | None = None  # programmed target (axis frame), exact
         self._tf: float | None = None  # the same as a float (read every cycle)
@@ -422,7 +423,7 @@ class ClmAxis:
     def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> ClmError | None:
         """Drive Enable / Brake, the kernel axis' power, monitoring and outputs (decisions 4, 13-15)."""
         ax = self.axis
-        run = mode in ("manual", "automatic") and estop_ok and enable_input and self._enabled and not self._fault
+        run = mode in ("manual", "automatic") and estop_ok and enable_input and self._enabled and self._switched_on and not self._fault
         if run and not self._drive_on:
             self._drive_on = True
             self._on_cycles = 0
@@ -445,6 +446,8 @@ class ClmAxis:
 
     def _find_fault(self, mode: str, enable_input: bool) -> ClmError | None:
         n = self.number
+        if not self._switched_on:  # !MxOFF: "axis-specific faults disabled" (spec §8.6)
+            return None
         if mode == "automatic" and self._enabled and not enable_input:
             return ClmError(axis_fault(0x00, n), f"Enable Axis {n} missing in Automatic (L6039)")
         if not self._drive_on:
@@ -483,6 +486,11 @@ class ClmAxis:
         if self._drive_on:
             self._drive_off()
         self._outputs()
+
+    def interface_enable(self, on: bool) -> None:
+        """``!MxON`` / ``!MxOFF`` (spec §8.6): off, the drive enable and brake outputs drop and the
+        axis' own faults are not raised; on (also after power-on and an E-Stop) it runs again."""
+        self._switched_on = on
 
     def clear_fault(self) -> None:
         """External Clear / CL / !sCLEAR: the drive may be enabled again at the next tick."""

@@ -80,7 +80,9 @@ class ModeMachine:
         self._previous: dict[Operand, int] = {}
         self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, *ENABLE.values())}
         self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK)]
-        self.enabled_axes: frozenset[int] = frozenset()
+        self.enabled_axes: frozenset[int] = frozenset()  # B000's axes, less those !MxOFF switched off
+        self._parameter_axes: frozenset[int] = frozenset()
+        self.interface_off: set[int] = set()
         self._feed_interrupted: set[int] = set()
         # parameter values read every cycle, taken when Parameter mode is left (they change
         # only there): the Ax15 inputs per axis, B014, B015, B018
@@ -136,6 +138,8 @@ class ModeMachine:
             self._change(wanted)
         if not self.estop_ok:
             self.fault(ClmError("03", "E-Stop input (I0.00.2) is open"))
+            for n in list(self.interface_off):  # "activated ... after an E-Stop" (§9.2 MxON)
+                self.interface_enable(n, True)
         if clear and self.fault_error is not None:
             self.clear()
         if self.mode == "automatic" and self.fault_error is None:
@@ -177,7 +181,8 @@ class ModeMachine:
         rt = self.rt
         params = rt.memory.parameters
         rt.memory.leave_parameter_mode()
-        self.enabled_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
+        self._parameter_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
+        self.enabled_axes = self._parameter_axes - self.interface_off
         self._take_parameters()
         for axis in rt.axes.values():
             axis.configure(params)
@@ -222,6 +227,15 @@ class ModeMachine:
 
     def logic_may_run(self) -> bool:
         return self.mode != "parameter" and not (self.fault_error is not None and self.fault_error.code == "38")
+
+    def interface_enable(self, number: int, on: bool) -> None:
+        """``!MxON`` / ``!MxOFF``: kept through faults and mode changes, undone by power-on and
+        E-Stop; a command for a switched-off axis is fault 4E (spec §8.6)."""
+        (self.interface_off.discard if on else self.interface_off.add)(number)
+        self.enabled_axes = self._parameter_axes - self.interface_off
+        axis = self.rt.axes.get(number)
+        if axis is not None:
+            axis.interface_enable(on)
 
     def feed_allowed(self, number: int) -> bool:
         return number not in self._feed_interrupted

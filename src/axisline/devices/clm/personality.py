@@ -93,7 +93,7 @@ class ClmPersonality(Personality):
 
     name = "clm"
     Config = ClmConfig
-    endpoints = ()  # the X6 serial protocol comes with `serial`
+    endpoints = ("serial-tcp",)
 
     def __init__(self, machine: Any, config: ClmConfig) -> None:
         super().__init__(machine, config)
@@ -271,6 +271,15 @@ class ClmPersonality(Personality):
         return self._ever_ran and not self.rt.modes.running
 
     # -- persistence and reporting -------------------------------------------------------------
+
+    def byte_endpoint(self) -> Any:
+        """The X6 serial protocol (`serial`) on this CLM's runtime, for `serve --serial-tcp /
+        --serial-pty`: each connection takes its own session; writes need `network_writes`; an
+        acknowledged write is in the memory file before its reply."""
+        from .serial import ClmSerialEndpoint
+
+        store = None if self.store is None else (lambda: self.store.save(self.memory))  # type: ignore[union-attr]
+        return ClmSerialEndpoint(self.rt, lambda: self.network_writes, store=store)
 
     def store_paths(self) -> list[Path]:
         return [self.memory_path] if self.memory_path is not None else []

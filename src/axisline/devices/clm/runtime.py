@@ -67,6 +67,7 @@ class ClmRuntime:
         self.on_move: Callable[[Any, NcTask], None] | None = None  # the report's hook
         self.modes = ModeMachine(self)
         self._run_cycles = 0  # V001
+        self._time_origin = 0  # V019 counts the hours since this cycle (!CCLVAR0019 sets it)
         memory.variables.system = self.system_value
 
     # -- the cycle -------------------------------------------------------------------------
@@ -93,6 +94,10 @@ class ClmRuntime:
             self.modes.fault(e)
         self.modes.outputs()
         self.cycle += 1
+
+    def clear_time_counter(self) -> None:
+        """``!CCLVAR0019``: the running-time counter V019 starts again at 0 (§7.13)."""
+        self._time_origin = self.cycle
 
     def cycles_for_ms(self, ms: int) -> int:
         return math.ceil(ms / (self.nc_cycle_s * 1000) - 1e-9)
@@ -247,7 +252,7 @@ class ClmRuntime:
         if 2 <= number <= 6:
             return self.tasks[number - 2].pc * _SCALE
         if number == 19:
-            return int(self.cycle * self.nc_cycle_s / 3600) * _SCALE
+            return int((self.cycle - self._time_origin) * self.nc_cycle_s / 3600) * _SCALE
         axis = self.axes.get(number // 100) if number >= 100 else None
         if axis is None:
             return None
