@@ -86,3 +86,52 @@ def test_retained_memory_keeps_counters_and_variables_across_a_restart(tmp_path)
     m2 = Machine.from_file(path)
     assert m2.device.memory.program.counters[7] == count
     assert m2.device.memory.variables[600] == 250_000_000
+
+
+def _serve(*args: str):
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "axisline.cli", "serve", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    endpoints = {}
+    for line in proc.stdout:
+        kind, _, where = line.strip().partition(" ")
+        if kind == "ready":
+            return proc, endpoints
+        endpoints[kind] = where
+    proc.kill()
+    raise AssertionError(f"serve did not start: {proc.stderr.read()}")
+
+
+def test_retained_memory_survives_kill_9_of_serve(tmp_path):
+    """Issue 12: what the CLM acknowledged (a variable written over X6) and what it executed (the
+    part counter) are in the memory file at once; a kill -9 at any moment loses none of it and
+    leaves a file that loads."""
+    import signal
+    import socket
+    import time
+
+    from axisline.devices.clm.telegram import emit
+
+    path = _machine_file(tmp_path)
+    path.write_text(path.read_text().replace('report_output = "Q1.00.0"', 'report_output = "Q1.00.0"\nmemory_file = "roll_feed.clm.json"'))
+    for round_ in range(3):
+        proc, endpoints = _serve(str(path), "--serial-tcp", "127.0.0.1:0", "--allow-writes")
+        try:
+            host, _, port = endpoints["serial-tcp"].rpartition(":")
+            with socket.create_connection((host, int(port)), timeout=10) as sock:
+                value = f"+{round_ + 1:08d}.500000"
+                sock.sendall(emit("#", 0, "V", f"{610 + round_:03d} {value} ").encode())
+                reply = b""
+                while not reply.endswith(b"\r\n"):
+                    chunk = sock.recv(256)
+                    assert chunk
+                    reply += chunk
+                assert not reply.startswith(b"X"), reply  # no Status 01 error: acknowledged
+            time.sleep(0.05 * round_)  # at some moment of the run
+        finally:
+            proc.send_signal(signal.SIGKILL)
+            proc.wait(timeout=10)
+        m = Machine.from_file(path)  # the file loads
+        for k in range(round_ + 1):
+            assert m.device.memory.variables[610 + k] == (k + 1) * 1_000_000 + 500_000
