@@ -282,3 +282,41 @@ def test_cst_drops_subroutine_levels():
     rig.start()
     rig.run(3)
     assert rig.fault == "0C"
+
+
+def _corrected(name: str) -> str:
+    """The manual's Task 2/3 listings write APE with a bit operand ('APE Q1.01.0 ...'); APE takes a
+    byte (L1504-1536), so Q1.01 is meant; and 'I1.00.00' (L3466) is I1.00.0."""
+    return listing(name).replace("APE\tQ1.01.0", "APE\tQ1.01").replace("I1.00.00", "I1.00.0")
+
+
+def test_task_2_example_sets_q1_00_7_after_10_cycles():
+    """§7.5 Task 2 (L3428-3443, B011 = 0200 0000 0): 'COU +00000 Q1.00.7 000010' after 10 loops."""
+    rig = Rig("0000 JMP 0000\n" + _corrected("task2_example"), params={"B011": "0200 0000 0"})
+    rig.set("I1.00.0", 1)
+    rig.run()
+    rig.start()
+    rig.run(round(9 * 3.3 / 0.002))
+    assert rig.bit("Q1.00.7") == 0
+    for _ in range(round(1.5 * 3.3 / 0.002)):
+        rig.run()
+        if rig.bit("Q1.00.7"):
+            break
+    assert rig.bit("Q1.00.7") == 1 and len(rig.axes[1].moves) == 10
+
+
+def test_task_3_example_runs_in_manual_from_power_on():
+    """§7.5 Task 3 (L3455-3469, B011 = 0000 0800 0): started at power-up, also in Manual: after
+    I1.00.0 the outputs are cleared, Q1.01.0 comes after 2 s, then Q1.01.1 pulses 100 ms."""
+    rig = Rig(_corrected("task3_example"), params={"B011": "0000 0800 0"}, mode="manual")
+    rig.set("Q1.01", 0xFF)
+    rig.set("I1.00.0", 1)
+    rig.run(3)
+    assert rig.bit("Q1.01.0") == 0 and rig.bit("Q1.01.7") == 0  # APE Q1.01 00000000
+    rig.run(1000)  # WAI 02.000
+    seen = []
+    for _ in range(80):
+        rig.run()
+        seen.append((rig.bit("Q1.01.0"), rig.bit("Q1.01.1")))
+    assert (0, 1) in seen  # Q1.01.0 back to 0, Q1.01.1 on for the 100 ms pulse
+    assert not rig.rt.modes.running  # tasks 1, 2, 4, 5 do not run in Manual
