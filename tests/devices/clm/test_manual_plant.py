@@ -101,3 +101,59 @@ def test_task_1_example_counts_100_cycles(tmp_path):
             break
     assert image.get(q) == 1
     assert abs(m.axis("feed").actual_position - 100 * 100.0) < 0.1
+
+
+def _until_stopped(m: Machine, seconds: float) -> None:
+    rt = m.device.rt
+    started = False
+    for _ in range(round(seconds / m.period)):
+        m.scheduler.run_cycle()
+        started = started or rt.modes.running
+        if started and not rt.modes.running:
+            return
+    raise AssertionError("the program did not stop")
+
+
+def test_bac_and_cou_examples_on_the_plant(tmp_path):
+    """BAC a) 10 positionings, b) 9 (L1546-1563); COU: 10, then Q1.00.4 (L1739-1751)."""
+    from .test_nc import listing
+
+    for name, parts in (("bac_example_a", 10), ("bac_example_b", 9), ("cou_example", 10)):
+        m = machine(tmp_path, listing(name) + "\n")
+        _until_stopped(m, 40.0)
+        assert abs(m.axis("feed").actual_position - 50.0 * parts) < 0.1, name
+
+
+def test_psi_example(tmp_path):
+    """L2330-2340: PSI 100, WAI 0.5, AEA Q1.00.6 1: the output comes 0.5 s after axis 1 is in
+    position at +100 (the printed JSR 0666 is replaced by a stop)."""
+    m = machine(tmp_path, "0000 PSI 1 +000100.000 999\n0001 WAI 00.500\n0002 AEA Q1.00.6 1\n0003 JST 0003\n")
+    from axisline.devices.clm.operands import parse_operand
+
+    q = parse_operand("Q1.00.6", bit=True)
+    rt = m.device.rt
+    in_position_at = output_at = None
+    for k in range(round(3.0 / m.period)):
+        m.scheduler.run_cycle()
+        if in_position_at is None and rt.tasks[0].pc == 1:
+            in_position_at = k
+        if output_at is None and m.device.memory.image.get(q):
+            output_at = k
+    assert abs(m.axis("feed").actual_position - 100.0) < 0.1
+    assert (output_at - in_position_at) * m.period == __import__("pytest").approx(0.5, abs=3 * m.period)  # + the cycles of WAI and AEA themselves
+
+
+def test_akp_example_mask(tmp_path):
+    """L1481-1502: mask 21001220 (bit 7 first): bits 0, 4, 5 must be 0, bits 3 and 6 must be 1,
+    bits 1, 2, 7 are not checked."""
+    from .clmrig import Rig
+
+    rig = Rig("0000 AKP M2.02 21001220\n0001 JST 0001\n")
+    rig.set("M2.02", 0b10001110)  # 7 1, 6 0: bit 6 must be 1 -> waits
+    rig.run()
+    rig.start()
+    rig.run(3)
+    assert rig.rt.tasks[0].pc == 0
+    rig.set("M2.02", 0b11001110)  # 6 1, 5 0, 4 0, 3 1, 2 1, 1 1, 0 0: holds
+    rig.run(2)
+    assert rig.rt.tasks[0].pc == 1
