@@ -195,7 +195,7 @@ def test_mat():
     v.write(602, -4_000_000)
     rig.run(1)
     rig.start()
-    rig.run(3)
+    rig.run(5)  # two cycles a MAT
     assert (v[700], v[701], v[702]) == (-10_000_000, -3_333_333, 1_000_000)
     rig = Rig("0000 MAT V700 = V601 / V602\n")
     rig.run(1)
@@ -320,3 +320,21 @@ def test_task_3_example_runs_in_manual_from_power_on():
         seen.append((rig.bit("Q1.01.0"), rig.bit("Q1.01.1")))
     assert (0, 1) in seen  # Q1.01.0 back to 0, Q1.01.1 on for the 100 ms pulse
     assert not rig.rt.modes.running  # tasks 1, 2, 4, 5 do not run in Manual
+
+
+def test_mat_takes_two_cycles_and_the_unit_is_shared():
+    """Decision C-MAT (L2176-2180): a MAT's result is there and its task goes on one cycle after it
+    is reached; a second task's MAT in the same cycle waits for the calculating unit."""
+    program = ("0000 MAT V700 = V600 + +00000001.000000\n0001 AEA M2.00.0 1\n0002 JMP 0002\n"
+               "0500 MAT V701 = V600 + +00000002.000000\n0501 AEA M2.00.1 1\n0502 JMP 0502\n")
+    rig = Rig(program, params={"B012": "0500 0000"})
+    rig.run()
+    rig.start()  # cycle 1: task 1 takes the unit, task 4 waits
+    v = rig.rt.memory.variables
+    assert (v[700], v[701]) == (0, 0)
+    rig.run()  # cycle 2: task 1 stores; task 4 takes the unit
+    assert (v[700], v[701]) == (1_000_000, 0)
+    rig.run()  # cycle 3: task 1 AEA; task 4 stores
+    assert v[701] == 2_000_000 and rig.bit("M2.00.0") == 1 and rig.bit("M2.00.1") == 0
+    rig.run()
+    assert rig.bit("M2.00.1") == 1

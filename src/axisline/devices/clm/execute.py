@@ -14,10 +14,14 @@ Decisions (spec line -> choice, why)
    coding of the fraction: the 4 bytes after the point hold the six decimals as an integer
    (0-999999), least significant byte first like the BCD form of Fig. 5-8, the sign in bit 7 of
    the highest byte. Test: ``tests/devices/clm/test_nc.py::test_cvt_binary_round_trip``.
-2. C-MAT, "this command can endure over the time period of multiple cycles" (L2180) without a
-   number: MAT takes one cycle like the other commands; products and quotients are cut to six
-   decimals toward zero, as a field truncates a variable (§5.6); a result beyond
-   +-99999999.999999 is fault 32, a division by zero 07. Test: ``test_mat``.
+2. C-MAT, "The calculating unit ... is independent of the cycle time ... this command can endure
+   over the time period of multiple cycles" (L2176-2180) without a number: the unit is shared
+   by the five tasks and does one calculation per NC cycle; a MAT takes it in the cycle it is
+   reached (waiting while another task's MAT has it), its result is stored in the next cycle,
+   and the task goes on then: two cycles, more when tasks calculate at once. Products and
+   quotients are cut to six decimals toward zero, as a field truncates a variable (§5.6); a
+   result beyond +-99999999.999999 is fault 32, a division by zero 07. Tests: ``test_mat``,
+   ``test_mat_takes_two_cycles_and_the_unit_is_shared``.
 3. C-CID, the operation digit of CID (decision C-LOST): 0 assigns, 1 adds, 2 subtracts the
    5.3 value. Test: ``test_cid``.
 4. C-LT-OWNED, errata "an NC write to an LT-owned output": L5723 "this output can no longer be
@@ -238,6 +242,20 @@ def op_cid(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 
 
 def op_mat(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """The calculating unit is shared by the tasks and works one calculation a cycle: a MAT
+    takes the unit in one cycle (waiting while another task's MAT has it) and stores its result
+    and goes on in the next (decision C-MAT)."""
+    if task.wait is None:
+        if rt.calculator_cycle == rt.cycle:  # another task's calculation this cycle
+            return None
+        rt.calculator_cycle = rt.cycle
+        task.wait = _calculate(rt, ins)
+        return None
+    _store(rt, ins.values[0], task.wait)  # type: ignore[arg-type]
+    return _next(task)
+
+
+def _calculate(rt: ClmRuntime, ins: Instruction) -> int:
     a = rt.variable(ins.values[2])  # type: ignore[arg-type]
     b = rt.number(ins, 4)
     op = str(ins.values[3])
@@ -253,8 +271,9 @@ def op_mat(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
             raise ClmError("07", f"MAT: {ins.values[2]} / 0")
         q = abs(a) * VARIABLE_SCALE // abs(b)
         r = q if (a >= 0) == (b > 0) else -q
-    _store(rt, ins.values[0], r)  # type: ignore[arg-type]
-    return _next(task)
+    if not -VARIABLE_MAX <= r <= VARIABLE_MAX:
+        raise ClmError("32", f"{ins.values[0]}: {r / 1e6:.6f} is beyond +-99999999.999999")
+    return r
 
 
 def op_cvt(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:

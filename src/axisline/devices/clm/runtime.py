@@ -67,6 +67,7 @@ class ClmRuntime:
         self.on_move: Callable[[Any, NcTask], None] | None = None  # the report's hook
         self.modes = ModeMachine(self)
         self._run_cycles = 0  # V001
+        self.calculator_cycle = -1  # the cycle the shared calculating unit last worked (MAT)
         self._time_origin = 0  # V019 counts the hours since this cycle (!CCLVAR0019 sets it)
         memory.variables.system = self.system_value
 
