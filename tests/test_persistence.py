@@ -7,13 +7,12 @@ from __future__ import annotations
 import os
 import signal
 import socket
-import subprocess
-import sys
 import time
 import tomllib
 from pathlib import Path
 
 import pytest
+from serving import serve
 from typer.testing import CliRunner
 
 from axisline.cli import app
@@ -41,20 +40,6 @@ def _compax_machine(tmp_path: Path) -> Path:
     return path
 
 
-def _serve(*args: str) -> tuple[subprocess.Popen, dict[str, str]]:
-    """Start `axisline serve`; return it once it printed "ready", with its endpoints."""
-    proc = subprocess.Popen([sys.executable, "-m", "axisline.cli", "serve", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    endpoints = {}
-    for line in proc.stdout:
-        kind, _, where = line.strip().partition(" ")
-        if kind == "ready":
-            return proc, endpoints
-        endpoints[kind] = where
-    proc.kill()
-    raise AssertionError(f"serve did not start: {proc.stderr.read()}")
-
-
 def _connect(where: str) -> socket.socket:
     host, _, port = where.rpartition(":")
     return socket.create_connection((host, int(port)), timeout=10)
@@ -78,7 +63,7 @@ def test_every_acknowledged_compax_write_survives_a_kill_9_right_after_the_reply
     words: dict[int, float] = {}  # F address -> value, every write acknowledged so far
     p179 = None
     for kill in range(12):
-        proc, endpoints = _serve(str(machine), "--serial-tcp", "127.0.0.1:0", "--allow-writes")
+        proc, endpoints = serve(str(machine), "--serial-tcp", "127.0.0.1:0", "--allow-writes")
         try:
             with _connect(endpoints["serial-tcp"]) as sock:
                 # set points in the free middle of the memory (the curves stay as they are)
@@ -108,7 +93,7 @@ def test_serve_removes_the_temporary_files_of_interrupted_saves(tmp_path):
     others = [tmp_path / ".other.json.k3xq9z1a.tmp", tmp_path / "knife.cam.json.tmp"]  # not a save of a store
     for p in others:
         p.write_text("keep")
-    proc, _ = _serve(str(machine), "--duration", "0.1")
+    proc, _ = serve(str(machine), "--duration", "0.1")
     out, err = proc.communicate(timeout=60)
     assert proc.returncode == 0, err
     assert not any(p.exists() for p in stale)
@@ -118,7 +103,7 @@ def test_serve_removes_the_temporary_files_of_interrupted_saves(tmp_path):
 
 def test_a_shutdown_save_that_fails_is_reported_without_a_traceback(tmp_path):
     machine = _compax_machine(tmp_path)
-    proc, _ = _serve(str(machine))
+    proc, _ = serve(str(machine))
     try:
         (tmp_path / "knife.cam.json").mkdir()  # taken after the check passed
         proc.send_signal(signal.SIGTERM)
@@ -161,7 +146,7 @@ wait = "none"
 def test_a_second_sigterm_during_the_stop_ramps_does_not_cut_them_short(tmp_path):
     machine = tmp_path / "ramp.toml"
     machine.write_text(RAMP)
-    proc, _ = _serve(str(machine))
+    proc, _ = serve(str(machine))
     try:
         time.sleep(0.6)  # at 100 mm/s by now: the stop ramp takes 2.5 s
         proc.send_signal(signal.SIGTERM)

@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 import pytest
+from serving import serve
 from typer.testing import CliRunner
 
 from axisline.cli import app
@@ -88,22 +89,7 @@ def test_retained_memory_keeps_counters_and_variables_across_a_restart(tmp_path)
     assert m2.device.memory.variables[600] == 250_000_000
 
 
-def _serve(*args: str):
-    import subprocess
-    import sys
-
-    proc = subprocess.Popen([sys.executable, "-m", "axisline.cli", "serve", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    endpoints = {}
-    for line in proc.stdout:
-        kind, _, where = line.strip().partition(" ")
-        if kind == "ready":
-            return proc, endpoints
-        endpoints[kind] = where
-    proc.kill()
-    raise AssertionError(f"serve did not start: {proc.stderr.read()}")
-
-
-def test_retained_memory_survives_kill_9_of_serve(tmp_path):
+def test_retained_memory_survives_kill_9_ofserve(tmp_path):
     """Issue 12: what the CLM acknowledged (a variable written over X6) and what it executed (the
     part counter) are in the memory file at once; a kill -9 at any moment loses none of it and
     leaves a file that loads."""
@@ -116,7 +102,7 @@ def test_retained_memory_survives_kill_9_of_serve(tmp_path):
     path = _machine_file(tmp_path)
     path.write_text(path.read_text().replace('report_output = "Q1.00.0"', 'report_output = "Q1.00.0"\nmemory_file = "roll_feed.clm.json"'))
     for round_ in range(3):
-        proc, endpoints = _serve(str(path), "--serial-tcp", "127.0.0.1:0", "--allow-writes")
+        proc, endpoints = serve(str(path), "--serial-tcp", "127.0.0.1:0", "--allow-writes")
         try:
             host, _, port = endpoints["serial-tcp"].rpartition(":")
             with socket.create_connection((host, int(port)), timeout=10) as sock:

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import socket
 import threading
-import time
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
+from serving import Fed
 
 from axisline.devices.compax import CompaxError
 from axisline.devices.compax.ascii import MAX_ERROR_REPLY, MAX_LINE, PROMPT, AsciiEndpoint, CamCommands, error_reply
@@ -308,31 +309,12 @@ def test_sessions_share_the_device_but_not_the_half_received_line():
     assert ep.feed(b"F6\r") == b"F0006=0.5000000" + PROMPT  # the endpoint's own session
 
 
-class _Fed:
-    """The machine's command queue, keeping the server's submissions (to wait until one ran)."""
-
-    def __init__(self, commands) -> None:
-        self.commands = commands
-        self.futures: list = []
-
-    def submit(self, fn, *args):
-        future = self.commands.submit(fn, *args)
-        self.futures.append(future)
-        return future
-
-    def wait(self, n: int) -> None:
-        deadline = time.monotonic() + 5
-        while not (len(self.futures) >= n and all(f.done() for f in self.futures)):
-            assert time.monotonic() < deadline, "the cycle did not take the bytes"
-            time.sleep(0.005)
-
-
 @pytest.fixture
 def served():
     """The COMPAX personality served over TCP on a cycling machine: (machine, server, queue)."""
     m = build(small())
     m.run(0.1)
-    fed = _Fed(m.commands)
+    fed = Fed(m.commands)
     srv = SerialTcpServer(m.device.byte_endpoint(), fed).start()
     stop = threading.Event()
     th = threading.Thread(target=_cycling, args=(m, stop))

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 from pymodbus.client import ModbusTcpClient
+from serving import Fed
 
 from axisline.config import parse_machine
 from axisline.devices.fs701.drivecom import ACK, ETX, NAK, STX, build_read, build_write, parse_reply
@@ -116,25 +117,6 @@ def test_drivecom_over_tcp_reads_writes_and_naks():
     finally:
         srv.stop()
     assert dev.params.sync_rate == 1.5 and dev.settings.sync_rate == 1.5  # the cutter took it
-
-
-class Fed:
-    """The machine's command queue, keeping the server's submissions (to wait until one ran)."""
-
-    def __init__(self, commands) -> None:
-        self.commands = commands
-        self.futures: list = []
-
-    def submit(self, fn, *args):
-        future = self.commands.submit(fn, *args)
-        self.futures.append(future)
-        return future
-
-    def wait(self, n: int) -> None:
-        deadline = time.monotonic() + 5
-        while not (len(self.futures) >= n and all(f.done() for f in self.futures)):
-            assert time.monotonic() < deadline, "the cycle did not take the bytes"
-            time.sleep(0.005)
 
 
 def test_drivecom_telegram_left_unfinished_by_a_client_does_not_touch_the_next_clients():
