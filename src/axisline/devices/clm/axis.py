@@ -75,6 +75,36 @@ Decisions (spec line -> choice, why)
 19. Jog (L5901-5918) -> Ax07 with the current ACC ramps (Ax09 in Manual, L1413); releasing the
     key brakes with the deceleration; jog(0) ends only a jog, never a program's move;
     test_jog_at_ax07_stops_at_the_limit.
+20. Rotary table (Ax00 type 2, L3501-3610, errata §3.10) -> IUT = Ax01 (incremental encoder,
+    L3573) or Ax01 x the Ax19 ratio (absolute, Fig. 7-6); all table arithmetic is exact
+    (Fractions: targets, IUT, the feed constant Ax01 x Y/X = 360/590, the increment); the kernel
+    axis stays unwrapped and the table position is its value modulo IUT;
+    tests/devices/clm/test_rotary.py::test_360_over_590_does_not_drift_over_a_million_revolutions.
+21. POA on the table (L3601-3605) -> the target (x FAK) must lie in 0..IUT (else 50 below /
+    51 above, the travel-limit codes); shortest way: the signed distance (target - position)
+    mod IUT, taken backwards when more than IUT/2 (exactly half: forwards); programmed
+    direction: the sign of the POA value is the direction and its magnitude the target (so in
+    that mode a negative value is allowed; "-000000.000" is +0: the sign of 0 is not stored);
+    a target equal to the position does not move; test_shortest_way, test_programmed_direction.
+22. RTM / Ax05 (L2468-2486, L4344) -> RTM 1 shortest, 2 programmed, 0 back to Ax05 (0
+    programmed, 1 shortest), > 2 unchanged; RTM needs type 2 (else no function) and a
+    reference (else 48); Ax05 returns at power up, error acknowledge and the end of Parameter
+    mode, not at Manual <-> Automatic; test_rtm_and_ax05_codes.
+23. SAC (Figs. 5-22..5-24, L2502-2584) -> a coordinate shift s against the initial (homing)
+    frame: m 0 sets s := value ("offset ... referenced to the initial coordinate system", not
+    added to a previous SAC), m 1 makes the present target read value; rotary (type 0) not
+    homed: the actual position becomes value and the axis is homed (m 0/1); rotary m 9: the
+    reference is cancelled and the actual position reads 0; linear / table not homed: 48;
+    Ax20 controlled axis: 1B; the travel limits are checked in the initial frame; clearing an
+    error or Parameter mode restores the initial frame; test_sac_table_per_motion_type.
+24. HOM (L1997-2026) -> starts the homing of Ax24 (homing.py) and proceeds after one cycle;
+    with an absolute encoder, a type digit 4 (passive, flying cutoff only) or a drive that is
+    not enabled or still moving: 52 HOM Command; the Homing input (Ax23) starts it on a
+    rising edge in Manual. The Homed output (Ax24) is set when homing ends, cleared when it
+    starts, at Lag / Runaway and on leaving Parameter mode, never rewritten in between (the
+    program may clear it, "the axis remains homed", L3719); stop, Immediate Stop, a mode
+    change or a fault end a running homing (to be started again, L3770-3775);
+    tests/devices/clm/test_homing.py::test_hom_and_akn_on_the_homed_output.
 """
 
 from __future__ import annotations
@@ -86,6 +116,7 @@ from typing import Any
 from axisline.motion.axis import AxisState
 from axisline.motion.profiles import Limits, State, plan_velocity
 
+from .axisref import AxisReferences, _f
 from .clmloop import LAG, NONE, RUNAWAY, ClmLoop
 from .errors import ClmError, axis_fault
 from .image import ProcessImage
@@ -106,11 +137,7 @@ _MILLI = 1000  # program lengths are 1/1000 IU
 _MILLIONTH = 1_000_000  # FAK f.ffffff
 
 
-def _f(x: Any) -> Fraction:
-    return Fraction(str(x)) if not isinstance(x, (int, Fraction)) else Fraction(x)
-
-
-class ClmAxis:
+class ClmAxis(AxisReferences):
     """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
 
     def __init__(self, number: int, machine: Any, axis_name: str, params: ParameterSet, image: ProcessImage, nc_cycle_s: float) -> None:
@@ -177,6 +204,7 @@ class ClmAxis:
         self._linear = params.motion_type(self.number) == 1
         self._absolute = params.encoder_type(self.number) in (1, 2)
         self._enabled = self.number in params.enabled_axes()
+        self._configure_table_and_homing(params, feed)
         self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
                             full_volts=float(num("12", "command_voltage")), window=self.window)
         self.machine.drive_by(self.axis_name, self.loop, volts=True)
@@ -247,10 +275,14 @@ class ClmAxis:
         n = self.number
         if not self.homed:
             raise ClmError(axis_fault(0x08, n), f"POA/PSA on axis {n} needs a reference (homing or an absolute encoder, L2265)")
+        if self.iut is not None:
+            self._move_to(self._table_goal(target), self._velocity(per_mille))
+            return
         goal = Fraction(target, _MILLI) * self._factor
-        if self._linear and goal < self._min:
+        initial = goal - self._sac_shift  # the travel limits stay in the initial frame (decision 23)
+        if self._linear and initial < self._min:
             raise ClmError(axis_fault(0x10, n), f"target {float(goal):.3f} is below Ax03 = {float(self._min):.3f} (L4298)")
-        if self._linear and goal > self._max:
+        if self._linear and initial > self._max:
             raise ClmError(axis_fault(0x11, n), f"target {float(goal):.3f} is above Ax04 = {float(self._max):.3f} (L4326)")
         self._move_to(goal, self._velocity(per_mille))
 
@@ -272,6 +304,19 @@ class ClmAxis:
         self._speed = abs(speed)
         self._start()
 
+    # -- velocity functions hook (override.py owns it: B017/VEO override, VCC) ------------------
+    override: Any = None  # None, or programmed IU/s -> commanded IU/s, applied in _start (override.py)
+
+    def change_speed(self, speed: float | None = None) -> None:
+        """VCC (a new programmed speed) or an override change (None): replan the running
+        positioning at once (kernel move_absolute, ABORTING); nothing else is touched."""
+        if speed is not None:
+            self._speed = abs(speed)
+        if self._target is not None and self._con is None and not (self._jog or self._kept or self._blocked or self._braking) and not self.motion_done:
+            self._start()
+
+    # -- end of the velocity functions hook ------------------------------------------------------
+
     def _start(self) -> None:
         """Hand the target (or CON) to the kernel; blocked while the drive is off (decision 17)."""
         ax = self.axis
@@ -281,7 +326,8 @@ class ClmAxis:
         if self._con is not None:
             cmd = ax.move_velocity(self._con, acceleration=self.acceleration, deceleration=self.deceleration, jerk=self._jerk())
         elif self._target is not None and self._speed > 0.0:
-            cmd = ax.move_absolute(float(self._target), velocity=self._speed, acceleration=self.acceleration,
+            cmd = ax.move_absolute(float(self._target), velocity=self._speed if self.override is None else self.override(self._speed),
+                                   acceleration=self.acceleration,
                                    deceleration=self.deceleration, jerk=self._jerk())
         else:
             self._blocked = self._target is not None  # 000 per mille: the target waits for a velocity
@@ -303,6 +349,11 @@ class ClmAxis:
 
     def stop_motion(self) -> None:
         """PBK: brake with the current deceleration, the rest is ignored, CON off (L2219)."""
+        if self._abort_homing():
+            self._con = None
+            self._jog = 0
+            self._kept = self._blocked = False
+            return
         self._con = None
         self._jog = 0
         self._kept = self._blocked = False
@@ -310,6 +361,8 @@ class ClmAxis:
 
     def immediate_stop(self) -> None:
         """Immediate Stop input / JST: brake, keep the remaining distance (L5879, L2077)."""
+        if self._abort_homing():
+            return
         if self._con is not None or self._jog:
             self.stop_motion()  # CON is switched off (L2077), a jog ends
             return
@@ -384,7 +437,7 @@ class ClmAxis:
         self._kept = self._blocked = self._braking = False
         a, d, j = self.acceleration, self.deceleration, self._jerk()
         if self._limits_apply():
-            limit = self._max if direction > 0 else self._min
+            limit = (self._max if direction > 0 else self._min) + self._sac_shift
             if (Fraction(ax.command_position) - limit) * direction >= 0:
                 self._jog = direction  # the key is dead at the limit (L4294, L4330)
                 self._target = None
@@ -423,6 +476,7 @@ class ClmAxis:
     def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> ClmError | None:
         """Drive Enable / Brake, the kernel axis' power, monitoring and outputs (decisions 4, 13-15)."""
         ax = self.axis
+        self._ran = True
         run = mode in ("manual", "automatic") and estop_ok and enable_input and self._enabled and self._switched_on and not self._fault
         if run and not self._drive_on:
             self._drive_on = True
@@ -438,7 +492,9 @@ class ClmAxis:
         if self._braking and ax.motion_ended and ax.command_velocity == 0.0:
             self._braking = False
             ax.halt()  # the kernel's state: STANDSTILL
-        fault = None if self._fault else self._find_fault(mode, enable_input)
+        fault = self._homing_tick(mode)
+        if fault is None and not self._fault:
+            fault = self._find_fault(mode, enable_input)
         if fault is not None:
             self.fault_stop()
         self._outputs()
@@ -459,11 +515,12 @@ class ClmAxis:
         mode14 = self._monitor_mode
         if (kind == LAG and mode14 in (0, 3)) or (kind == RUNAWAY and mode14 in (0, 2)):
             self._homed = False  # errata §3.8
+            self._homed_output(0)  # L3715-3717
             what = "Excess Pos Lag" if kind == LAG else "Drive Runaway"
             return ClmError(axis_fault(0x03 if kind == LAG else 0x02, n),
                             f"{what}: deviation {self.loop.deviation:.3f} beyond the Ax14 window {self.window:.3f} (L4518-4532)")
         if mode == "automatic" and self._limits_apply():
-            actual = ax.actual_position
+            actual = ax.actual_position - float(self._sac_shift)
             if actual < self._min_f:
                 return ClmError(axis_fault(0x06, n), f"actual {actual:.3f} below Ax03 = {self._min_f:.3f} (L4294)")
             if actual > self._max_f:
@@ -497,6 +554,10 @@ class ClmAxis:
         self._fault = False
         if self.axis.state is AxisState.ERROR_STOP:
             self.axis.reset()
+        self._shortest = self._ax05_shortest  # RTM: Ax05 again after an error acknowledge (L2484)
+        if self._sac_shift:  # SAC: the initial coordinate system again (L2510)
+            self._shift(-self._sac_shift)
+            self._sac_shift = Fraction(0)
 
     def _outputs(self) -> None:
         img = self.image

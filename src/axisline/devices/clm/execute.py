@@ -3,9 +3,10 @@
 One function per mnemonic, ``handler(rt, task, ins) -> next instruction | None (wait)``,
 collected in `HANDLERS`. Field values are read through the runtime (`rt.value`), which fits a
 variable to its field (fault 32) and checks an axis (16, 4E). The commands of the axis
-functions (part 3: HOM, SRM, REP, SRP, RMI, VCC, VEO, AEO, FOL, FUN, RTM, SAC, RSV) and of
+functions (part 3: SRM, REP, SRP, RMI, FOL, FUN, RSV) and of
 the flying cutoff (part 4: LML, LMK, LMR, EOS, MLO, MLT) are not in this version: reaching one
-stops the program with fault 0A and says so.
+stops the program with fault 0A and says so. VCC, VEO and AEO are here, their state and
+decisions in `override` (rt.velocity).
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -46,7 +47,7 @@ __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
 LATER = {
-    **dict.fromkeys(("HOM", "SRM", "REP", "SRP", "RMI", "VCC", "VEO", "AEO", "FOL", "FUN", "RTM", "SAC", "RSV"), "part 3 (axis functions)"),
+    **dict.fromkeys(("SRM", "REP", "SRP", "RMI", "FOL", "FUN", "RSV"), "part 3 (axis functions)"),
     **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
 }
 
@@ -419,6 +420,7 @@ def _position(absolute: bool, wait: bool) -> Handler:
         if task.wait is None:
             if not rt.feed_allowed(axis):  # Interrupt input of the axis missing: wait (§5.5)
                 return None
+            rt.velocity.positioned(axis)  # VCC mode 0 measures from here (override decision 8)
             if absolute:
                 axis.position_absolute(rt.number(ins, 1), rt.number(ins, 2))
             else:
@@ -433,6 +435,51 @@ def _position(absolute: bool, wait: bool) -> Handler:
     return handler
 
 
+# -- velocity functions (state and decisions in override.py) -------------------------------------
+
+
+def op_vcc(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """VCC a P vvv m x: waits for the distance (mode 0) or the braking point (mode 1)."""
+    axis = rt.axis(ins, 0)
+    if task.wait is None:
+        task.wait = rt.velocity.vcc_start(axis, rt.number(ins, 1), rt.number(ins, 2), int(str(ins.values[3])))
+    return _next(task) if rt.velocity.vcc_poll(axis, task.wait) else None
+
+
+def op_veo(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """VEO a s x vvv f: one cycle (L2878)."""
+    rt.velocity.set_veo(rt.axis(ins, 0), int(str(ins.values[1])), rt.number(ins, 3), str(ins.values[4]) == "1")
+    return _next(task)
+
+
+def op_aeo(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """AEO a x y sss mmm: one cycle (L1446)."""
+    rt.velocity.aeo(rt.axis(ins, 0), str(ins.values[1]) == "1")
+    return _next(task)
+
+
+# -- homing, rotary table, coordinates (state and decisions in axis.py 20-24, homing.py) ----------
+
+
+def op_hom(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """HOM a: starts the Ax24 homing and proceeds after one cycle; completion is polled with
+    AKN on the Homed output (L2010-2026)."""
+    rt.axis(ins, 0).start_homing()
+    return _next(task)
+
+
+def op_rtm(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """RTM a m: 0 Ax05, 1 shortest, 2 programmed direction, > 2 no change (L2468-2486)."""
+    rt.axis(ins, 0).set_table_mode(rt.number(ins, 1))
+    return _next(task)
+
+
+def op_sac(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """SAC a m value: set / offset the coordinates per motion type (Figs. 5-22..5-24)."""
+    rt.axis(ins, 0).set_counter(int(str(ins.values[1])), rt.number(ins, 2))
+    return _next(task)
+
+
 def _later(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     raise ClmError("0A", f"{ins.mnemonic} is not available in this version of axisline (it comes with {LATER[ins.mnemonic]})")
 
@@ -443,8 +490,9 @@ HANDLERS: dict[str, Handler] = {
     "CLC": op_clc, "CON": op_con, "COU": op_cou, "CPJ": op_cpj, "CPL": op_cpl, "CPS": op_cps,
     "CST": op_cst, "CVT": op_cvt, "FAK": op_fak, "JMP": op_jmp, "JSR": op_jsr, "JST": op_jst,
     "JTK": op_jtk, "MAT": op_mat, "NOP": op_nop, "PBK": op_pbk, "RTS": op_rts, "SET": op_set,
-    "TXT": op_txt, "WAI": op_wai,
+    "TXT": op_txt, "WAI": op_wai, "VCC": op_vcc, "VEO": op_veo, "AEO": op_aeo,
     "POA": _position(True, False), "POI": _position(False, False),
     "PSA": _position(True, True), "PSI": _position(False, True),
+    "HOM": op_hom, "RTM": op_rtm, "SAC": op_sac,
     **dict.fromkeys(LATER, _later),
 }

@@ -199,7 +199,8 @@ class ClmMemory:
             if data:
                 image.data[span] = data
         self.program, self.parameters, self.logic = program, params, logic
-        self.variables, self.image = values, image
+        self.variables = values
+        self.image.data[:] = image.data  # in place: the axes, the Logic Task and the modes hold the image
         self.version += 1
 
 

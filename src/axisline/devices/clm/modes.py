@@ -78,6 +78,7 @@ class ModeMachine:
         self.manual_vector = False
         self._pending_interrupt = False
         self._previous: dict[Operand, int] = {}
+        self._data = rt.image.data  # the image's bytes (never replaced, written in place)
         self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, *ENABLE.values())}
         self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK)]
         self.enabled_axes: frozenset[int] = frozenset()  # B000's axes, less those !MxOFF switched off
@@ -95,8 +96,8 @@ class ModeMachine:
     # -- inputs ---------------------------------------------------------------------------
 
     def _bit(self, op: Operand) -> int:
-        at, shift, _ = self._places.get(op) or self.rt.image.locate(op)
-        return self.rt.image.data[at] >> shift & 1
+        at, shift, _ = self._places.get(op) or ProcessImage.locate(op)
+        return self._data[at] >> shift & 1
 
     def _rising(self, op: Operand) -> bool:
         now, before = self._bit(op), self._previous.get(op, 0)

@@ -17,6 +17,8 @@
     "I1.00.0" = "press_top"
     [device.outputs]                   # CLM outputs to [io] outputs
     "Q1.00.0" = "press_valve"
+    [device.analog_inputs]             # AE1..AE4 in volts (the override potentiometer, §7.3)
+    AE1 = 5.0
 
 Each NC cycle (`tick`, every machine cycle): the outputs the CLM set in the previous cycle go to
 the [io] outputs ("Hardware outputs are set at the beginning of the following cycle", L1437),
@@ -41,6 +43,7 @@ from pydantic import BaseModel, ConfigDict, Field, StringConstraints
 from axisline.configerrors import ConfigError, FilePath
 from axisline.devices.base import Personality
 from axisline.kernel.atomic import unwritable_reason
+from axisline.plant.io import AnalogIO
 
 from .errors import Finding
 from .files import read_file
@@ -54,6 +57,8 @@ __all__ = ["ClmConfig", "ClmPersonality"]
 Name = Annotated[str, StringConstraints(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
 Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
 InputName = Annotated[str, StringConstraints(pattern=r"^I[0-2]\.\d\d\.\d$")]
+AnalogName = Annotated[str, StringConstraints(pattern=r"^AE[1-4]$")]
+ANALOG_INPUTS = ("AE1", "AE2", "AE3", "AE4")
 OutputName = Annotated[str, StringConstraints(pattern=r"^Q[0-2]\.\d\d\.\d$")]
 
 _AUTO_CYCLE_MS = {1: 2.0, 2: 2.0, 3: 3.0, 4: 4.0}  # B010 = 0.0 (spec §1.4)
@@ -82,6 +87,9 @@ class ClmConfig(BaseModel):
         "unwired: Automatic, E-Stop and Immediate Stop closed, the configured axes enabled, the rest 0",
     )
     outputs: dict[OutputName, Signal] = Field(default_factory=dict, description="CLM outputs (Q0.00.0 ... Q2.05.7) to [io] outputs")
+    analog_inputs: dict[AnalogName, Annotated[float, Field(ge=-10.0, le=10.0)]] = Field(
+        default_factory=dict, description="analog inputs AE1..AE4 in volts (B017/VEO override: 0-10 V = 0-100 %); unset: 0 V"
+    )
     start_at: float | None = Field(None, ge=0.0, le=1e6, description="press Start this many seconds after power-on (none: only the wired input or !START)")
     report_output: OutputName | None = Field(
         None, description="the CLM output whose rising edge the report records (the press signal): the position error of axis 1 then"
@@ -131,6 +139,9 @@ class ClmPersonality(Personality):
         axes = {n: ClmAxis(n, machine, name, self.memory.parameters, self.memory.image, cycle_s) for n, name in enumerate(config.axes, start=1)}
         self.rt = ClmRuntime(self.memory, axes, cycle_s)
         self.rt.on_move = self._moved
+        self.analog = AnalogIO(ANALOG_INPUTS)  # AE1..AE4 (a test or the operator may set_input them)
+        for name, volts in config.analog_inputs.items():
+            self.analog.set_input(name, volts)
         self._start_cycle = None if config.start_at is None else math.ceil(config.start_at / cycle_s - 1e-9)
         self._report = None if config.report_output is None else parse_operand(config.report_output, bit=True)
         self._report_previous = 0
@@ -237,6 +248,9 @@ class ClmPersonality(Personality):
             data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
         if self._start_cycle is not None:
             image.set(_START, int(cycle == self._start_cycle))
+        if self.rt.velocity.needs_analog:  # (AE1..AE4 are read only by an override)
+            self.analog.sample()
+            self.rt.velocity.analog_volts[:] = [self.analog.read(name) for name in ANALOG_INPUTS]
         self.rt.step()
         self._ever_ran = self._ever_ran or self.rt.modes.running
         if self.store is not None:
@@ -253,8 +267,12 @@ class ClmPersonality(Personality):
         axis = self.rt.axes.get(1)
         if axis is None:
             return
-        target = self._targets.get(1, float(axis.target))
+        target = self._targets.get(1, float(axis.target if axis.target is not None else axis.command_position))
         actual = axis.actual_position
+        iut = getattr(axis, "iut", None)
+        if iut is not None:  # a rotary table: the station within the revolution (0..IUT)
+            wrapped = target % float(iut)
+            actual, target = wrapped + (actual - target), wrapped
         counts = getattr(self.machine.units[self.config.axes[0]].encoder, "counts_per_unit", None)
         self.records.append({
             "feed": len(self.records) + 1,

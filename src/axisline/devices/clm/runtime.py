@@ -42,6 +42,7 @@ from .logic import LogicError, LogicProgram, compile_logic
 from .memory import ClmMemory
 from .modes import ModeMachine
 from .nc import NcTask
+from .override import VelocityFunctions
 from .operands import Operand, exists
 from .program import Instruction
 
@@ -53,6 +54,7 @@ _SCALE = 1_000_000
 class ClmRuntime:
     def __init__(self, memory: ClmMemory, axes: dict[int, Any], nc_cycle_s: float) -> None:
         self.memory = memory
+        self.image = memory.image  # one image for the life of the CLM (written in place)
         self.axes = axes  # CLM axis number -> ClmAxis (the axes the machine file gives the CLM)
         self.nc_cycle_s = nc_cycle_s
         self.cycle = 0
@@ -70,12 +72,10 @@ class ClmRuntime:
         self.calculator_cycle = -1  # the cycle the shared calculating unit last worked (MAT)
         self._time_origin = 0  # V019 counts the hours since this cycle (!CCLVAR0019 sets it)
         memory.variables.system = self.system_value
+        self.velocity = VelocityFunctions(self)  # B017/VEO override, VCC, AEO (override.py)
 
     # -- the cycle -------------------------------------------------------------------------
 
-    @property
-    def image(self) -> Any:
-        return self.memory.image
 
     def step(self) -> None:
         """One NC cycle (the inputs already sampled into the image)."""
@@ -83,6 +83,7 @@ class ClmRuntime:
             self._run_cycles += 1
         try:
             self.modes.evaluate()
+            self.velocity.tick()
             self._logic_task()
             for task in self.tasks:
                 if self.modes.task_may_run(task):
@@ -257,5 +258,5 @@ class ClmRuntime:
         axis = self.axes.get(number // 100) if number >= 100 else None
         if axis is None:
             return None
-        value = {0: axis.actual_position, 3: axis.lag, 4: axis.actual_velocity, 10: axis.remaining_distance}.get(number % 100)
+        value = {0: getattr(axis, "position", axis.actual_position), 3: axis.lag, 4: axis.actual_velocity, 10: axis.remaining_distance}.get(number % 100)
         return None if value is None else round(value * _SCALE)
