@@ -102,6 +102,9 @@ class AxisEntry(AxisConfig):
 
 class MarkEntry(PrintMarkConfig):
     name: Name = Field("marks", description="sensor name; its edges are read as '<name>'")
+    carrier: Name | None = Field(
+        None, description="an axis whose drive moves the marked strip past the sensor (a feed roll); none: the [material] line"
+    )
 
 
 class TraceConfig(_Strict):
@@ -153,8 +156,11 @@ class MachineConfig(_Strict):
         for n in switches:
             if switches.count(n) > 1:
                 raise ValueError(f"switch name {n!r} is used twice")
-        if self.marks and self.material is None:
-            raise ValueError("marks: print-mark sensors need a [material] line to read marks from")
+        for i, mark in enumerate(self.marks):
+            if mark.carrier is None and self.material is None:
+                raise ValueError(f"marks[{i}]: a print-mark sensor reads marks from the [material] line or from a carrier axis; give one")
+            if mark.carrier is not None and mark.carrier not in names:
+                raise ValueError(f"marks[{i}].carrier = {mark.carrier!r}: no such axis (axes: {', '.join(names) or 'none'})")
         marks = [m.name for m in self.marks]
         for n in marks:
             if marks.count(n) > 1:

@@ -138,8 +138,9 @@ class Machine:
         for entry in sorted(config.axis, key=lambda a: a.name not in master_axes):
             self._add_axis(entry)
         self.material = config.material.build() if config.material is not None else None
-        for mark in config.marks:
-            self.sensors[mark.name] = Sensor(mark.name, mark.build(self.material, self.child_rng(f"marks:{mark.name}")))
+        for mark in config.marks:  # marks on the material line, or on a strip a feed roll moves
+            carrier = self.units[mark.carrier].drive if mark.carrier is not None else self.material
+            self.sensors[mark.name] = Sensor(mark.name, mark.build(carrier, self.child_rng(f"marks:{mark.name}")))
         self._add_sync(config)
         self.io = config.io.build()  # before the personality, which may wire its inputs to it
         self.device = None  # the personality (devices/base.py), if the machine file names one

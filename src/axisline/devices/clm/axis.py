@@ -317,6 +317,27 @@ class ClmAxis(AxisReferences):
 
     # -- end of the velocity functions hook ------------------------------------------------------
 
+    # -- registration hook (registration.py: SRM offset move, SRP correction, RMI suspend/resume) --
+    def move_to(self, goal: Fraction, speed: float | None = None) -> None:
+        """Position to the exact `goal` (IU, axis frame) at `speed` IU/s (None: the last speed)."""
+        self._check()
+        self._move_to(Fraction(goal), self._speed if speed is None else abs(speed))
+
+    def shift_target(self, delta: Fraction) -> None:
+        """Move the programmed target by `delta` IU (a running positioning is replanned)."""
+        if self._target is not None and delta:
+            self._move_to(self._target + delta, self._speed)
+
+    @property
+    def speed(self) -> float:
+        """IU/s of the last positioning."""
+        return self._speed
+
+    def per_mille_speed(self, per_mille: int) -> float:
+        return abs(self._velocity(per_mille))
+
+    # -- end of the registration hook --------------------------------------------------------------
+
     def _start(self) -> None:
         """Hand the target (or CON) to the kernel; blocked while the drive is off (decision 17)."""
         ax = self.axis

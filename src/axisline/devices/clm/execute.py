@@ -3,10 +3,11 @@
 One function per mnemonic, ``handler(rt, task, ins) -> next instruction | None (wait)``,
 collected in `HANDLERS`. Field values are read through the runtime (`rt.value`), which fits a
 variable to its field (fault 32) and checks an axis (16, 4E). The commands of the axis
-functions (part 3: SRM, REP, SRP, RMI, FOL, FUN, RSV) and of
+functions (part 3: FOL, FUN, RSV) and of
 the flying cutoff (part 4: LML, LMK, LMR, EOS, MLO, MLT) are not in this version: reaching one
 stops the program with fault 0A and says so. VCC, VEO and AEO are here, their state and
-decisions in `override` (rt.velocity).
+decisions in `override` (rt.velocity); SRM, REP, SRP and RMI in `registration`
+(rt.registration), which also takes part in PSI/POI of axis 1 while SRP or RMI is active.
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -38,6 +39,7 @@ from .errors import ClmError
 from .fields import VARIABLE_MAX, VARIABLE_SCALE, Var
 from .operands import Operand
 from .program import Instruction
+from .registration import op_rep, op_rmi, op_srm, op_srp
 
 if TYPE_CHECKING:
     from .nc import Handler, NcTask
@@ -47,7 +49,7 @@ __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
 LATER = {
-    **dict.fromkeys(("SRM", "REP", "SRP", "RMI", "FOL", "FUN", "RSV"), "part 3 (axis functions)"),
+    **dict.fromkeys(("FOL", "FUN", "RSV"), "part 3 (axis functions)"),
     **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
 }
 
@@ -421,7 +423,9 @@ def _position(absolute: bool, wait: bool) -> Handler:
             if not rt.feed_allowed(axis):  # Interrupt input of the axis missing: wait (§5.5)
                 return None
             rt.velocity.positioned(axis)  # VCC mode 0 measures from here (override decision 8)
-            if absolute:
+            if axis.number == 1 and rt.registration.hooked:  # SRP measures / corrects, RMI offset
+                rt.registration.position(axis, task, absolute, wait, rt.number(ins, 1), rt.number(ins, 2))
+            elif absolute:
                 axis.position_absolute(rt.number(ins, 1), rt.number(ins, 2))
             else:
                 axis.position_incremental(rt.number(ins, 1), rt.number(ins, 2))
@@ -430,7 +434,11 @@ def _position(absolute: bool, wait: bool) -> Handler:
                 return _next(task)
             task.wait = "moving"
             return None
-        return _next(task) if axis.in_position else None
+        if not axis.in_position:
+            return None
+        if axis.number == 1 and rt.registration.hooked:
+            return rt.registration.feed_done(task, _next(task))  # SRP: +5 when the window passed
+        return _next(task)
 
     return handler
 
@@ -494,5 +502,6 @@ HANDLERS: dict[str, Handler] = {
     "POA": _position(True, False), "POI": _position(False, False),
     "PSA": _position(True, True), "PSI": _position(False, True),
     "HOM": op_hom, "RTM": op_rtm, "SAC": op_sac,
+    "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi,
     **dict.fromkeys(LATER, _later),
 }

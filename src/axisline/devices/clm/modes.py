@@ -168,6 +168,7 @@ class ModeMachine:
             self._leave_parameter_mode()
         for axis in rt.axes.values():
             axis.reset_defaults()
+        rt.registration.reset()  # REP limits, SRP, RMI end with the mode (L2354)
         rt.message = ""
         self.restart_from_zero = True
         if wanted == "automatic":
@@ -370,6 +371,7 @@ class ModeMachine:
         self.restart_from_zero = True
         for axis in rt.axes.values():
             axis.fault_stop()
+        rt.registration.reset()  # REP limits are cleared by a fault (L2354)
         rt.memory.fault()
         self._clear_outputs_b018(on_fault=True)
 

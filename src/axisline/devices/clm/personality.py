@@ -139,6 +139,7 @@ class ClmPersonality(Personality):
         axes = {n: ClmAxis(n, machine, name, self.memory.parameters, self.memory.image, cycle_s) for n, name in enumerate(config.axes, start=1)}
         self.rt = ClmRuntime(self.memory, axes, cycle_s)
         self.rt.on_move = self._moved
+        self._wire_marks(config)
         self.analog = AnalogIO(ANALOG_INPUTS)  # AE1..AE4 (a test or the operator may set_input them)
         for name, volts in config.analog_inputs.items():
             self.analog.set_input(name, volts)
@@ -203,6 +204,15 @@ class ClmPersonality(Personality):
             except ValueError as e:  # ConfigError from machine.signal too
                 problems.append(f"device.inputs.{name} = {value!r}: {'; '.join(getattr(e, 'problems', [str(e)]))}")
         return out
+
+    def _wire_marks(self, config: ClmConfig) -> None:
+        """The raster inputs wired to a print-mark sensor latch at its sub-cycle edges
+        (registration.py)."""
+        sensors = getattr(self.machine, "sensors", {})
+        for name, value in config.inputs.items():
+            if isinstance(value, str) and value in sensors and name in ("I0.01.7", "I0.01.4"):
+                op = parse_operand(name, bit=True)
+                self.rt.registration.raster_sensors[(op.source, op.byte, op.bit)] = sensors[value].device
 
     def _wire_outputs(self, config: ClmConfig, problems: list[str]) -> list[tuple[Operand, str]]:
         out = []
@@ -312,10 +322,12 @@ class ClmPersonality(Personality):
         modes = self.rt.modes
         errors = [abs(r["error"]) for r in self.records]
         fault = modes.fault_error
+        products = self.rt.registration.products
         return {
             "headline": (
                 f"CLM: {modes.mode}, {len(self.records)} feed(s) recorded"
                 + (f", largest error {max(errors):.4f}" if errors else "")
+                + (f", {len(products)} product(s) registered, largest correction {max(abs(r['correction']) for r in products):.3f}" if products else "")
                 + (f", fault {fault.code} {fault.text}" if fault is not None else "")
             ),
             "mode": modes.mode,
@@ -325,6 +337,7 @@ class ClmPersonality(Personality):
             "feeds": self.records,
             "max_abs_error": max(errors) if errors else None,
             "store_error": self.store_error,
+            "registration": self.rt.registration.products,
         }
 
     def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
@@ -337,6 +350,11 @@ class ClmPersonality(Personality):
             lines += ["", "Position error of axis 1 when the press signal came:", "",
                       "| feed | time s | target | actual | error | error (counts) |", "|---|---|---|---|---|---|"]
             lines += [f"| {r['feed']} | {r['time_s']:.3f} | {r['target']:.4f} | {r['actual']:.4f} | {r['error']:+.4f} | {r['error_counts']} |" for r in feeds]
+        products = device_summary.get("registration") or []
+        if products:  # SRP (registration.py): what a user checks on a print-registered feed
+            lines += ["", "Registration (SRP) per product: mark latched, measured distance to the end position, "
+                      "correction of the next feed:", "", "| product | mark | measured | correction |", "|---|---|---|---|"]
+            lines += [f"| {r['product']} | {r['mark']:.3f} | {r['measured']:.3f} | {r['correction']:+.3f} |" for r in products]
         return "\n".join(lines) + "\n"
 
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:

@@ -45,6 +45,7 @@ from .nc import NcTask
 from .override import VelocityFunctions
 from .operands import Operand, exists
 from .program import Instruction
+from .registration import Registration
 
 __all__ = ["ClmRuntime"]
 
@@ -73,6 +74,7 @@ class ClmRuntime:
         self._time_origin = 0  # V019 counts the hours since this cycle (!CCLVAR0019 sets it)
         memory.variables.system = self.system_value
         self.velocity = VelocityFunctions(self)  # B017/VEO override, VCC, AEO (override.py)
+        self.registration = Registration(self)  # SRM/REP/SRP/RMI, raster latch (registration.py)
 
     # -- the cycle -------------------------------------------------------------------------
 
@@ -85,8 +87,12 @@ class ClmRuntime:
             self.modes.evaluate()
             self.velocity.tick()
             self._logic_task()
+            registration = self.registration
+            if registration.armed:  # a mark is awaited: latch it before the tasks look
+                registration.tick()
+            suspended = registration.suspended_task  # RMI: Task 1 waits for RMI 1 1
             for task in self.tasks:
-                if self.modes.task_may_run(task):
+                if task.number != suspended and self.modes.task_may_run(task):
                     task.step(self, HANDLERS)
             for axis in self.axes.values():
                 err = axis.tick(self.modes.mode, self.modes.axis_enable_input(axis.number), self.modes.estop_ok)

@@ -59,8 +59,7 @@ Decisions (spec line -> choice, why)
 5. C-NOT-AVAILABLE, issue 12 ("answer the CLM's 'not available' until then"): Status 47 (and 09,
    the measuring wheel's position) answer error 10 "M-Wheel Param Error" when the measuring
    wheel is not set up, as L7193 says the CLM does for 47 (C000 without a resolution; for 09:
-   axis 1 not in measuring-wheel mode 3/4); with the wheel set up, and for 41 (raster latch of
-   SRM, part 3) and 54 (cutoff length counters, "only supported for Flying Cutoff", L7271;
+   axis 1 not in measuring-wheel mode 3/4); with the wheel set up, and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271;
    part 4), error 09 "Status # illegal" ("status information that was not present in the
    CLM", L6815): a host reads that the value does not exist, not that a parameter is wrong.
    Status 01 itself is 09 ("can *not* be queried", L6791). Test:
@@ -337,8 +336,10 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
         return _status_63(rt, args)
     if number in (9, 47):
         raise _measuring_wheel(rt, number)
-    if number == 41:
-        raise ClmError(serial_code(9), "Status 41 (raster position of SRM) is part 3 of axisline's CLM, not yet available")
+    if number == 41:  # the axis-1 position latched at the last raster (registration decision 6)
+        axis = _axis(rt, 1)
+        homed = "A" if axis is not None and getattr(axis, "homed", False) else " "
+        return f"41 {homed}{_fixed(rt.registration.latch41, 6, 3)} "
     if number == 54:
         raise ClmError(serial_code(9), "Status 54 (cutoff length counters) is part 4 of axisline's CLM, not yet available")
     if number == 1:
