@@ -122,6 +122,7 @@ from .errors import ClmError, axis_fault
 from .image import ProcessImage
 from .operands import Operand
 from .parameters import ParameterSet
+from .slave import Follower
 
 __all__ = ["ClmAxis", "DRIVE_OUTPUTS", "BRAKE_DELAY_S"]
 
@@ -139,6 +140,11 @@ _MILLIONTH = 1_000_000  # FAK f.ffffff
 
 class ClmAxis(AxisReferences):
     """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
+
+    # slave / synchronous axis (slave.py): the Follower of an Ax00 mode 1/2 axis, and the CLM's
+    # axes by number (set by the personality) to find the master
+    follower: Follower | None = None
+    peers: dict[int, Any] = {}
 
     def __init__(self, number: int, machine: Any, axis_name: str, params: ParameterSet, image: ProcessImage, nc_cycle_s: float) -> None:
         if number not in DRIVE_OUTPUTS:
@@ -204,6 +210,11 @@ class ClmAxis(AxisReferences):
         self._linear = params.motion_type(self.number) == 1
         self._absolute = params.encoder_type(self.number) in (1, 2)
         self._enabled = self.number in params.enabled_axes()
+        # slave / synchronous axis (slave.py): a new Follower (FOL defaults) after Parameter mode
+        if self.follower is not None:
+            self.follower.detach()
+        mode = params.axis_mode(self.number)
+        self.follower = Follower(self, mode, int(params.get(a + "00")["master"])) if mode in (1, 2) else None
         self._configure_table_and_homing(params, feed)
         self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
                             full_volts=float(num("12", "command_voltage")), window=self.window)
@@ -293,7 +304,14 @@ class ClmAxis(AxisReferences):
         self._move_to(self._base() + Fraction(distance, _MILLI) * self._factor, speed)
 
     def _base(self) -> Fraction:
+        if self._target is None and self._following:  # slave: the own part's frame (slave.py 7)
+            return Fraction(self.follower.u)  # type: ignore[union-attr]
         return self._target if self._target is not None else Fraction(self.axis.command_position)
+
+    @property
+    def _following(self) -> bool:
+        """Slave / synchronous axis coupled: positionings are the Follower's own part."""
+        return self.follower is not None and self.follower.attached
 
     def _move_to(self, goal: Fraction, speed: float) -> None:
         self._con = None
@@ -344,6 +362,18 @@ class ClmAxis(AxisReferences):
         if not (self._drive_on and ax.powered):
             self._blocked = True
             return
+        if self._following:  # slave: added to the following in velocity (slave.py 7)
+            f = self.follower
+            assert f is not None
+            self._blocked = False
+            if self._con is not None:
+                f.own_velocity(self._con, self.acceleration, self.deceleration, self._jerk())
+            elif self._target is not None and self._speed > 0.0:
+                f.own_move(float(self._target), self._speed if self.override is None else self.override(self._speed),
+                           self.acceleration, self.deceleration, self._jerk())
+            else:
+                self._blocked = self._target is not None
+            return
         if self._con is not None:
             cmd = ax.move_velocity(self._con, acceleration=self.acceleration, deceleration=self.deceleration, jerk=self._jerk())
         elif self._target is not None and self._speed > 0.0:
@@ -384,6 +414,8 @@ class ClmAxis(AxisReferences):
         """Immediate Stop input / JST: brake, keep the remaining distance (L5879, L2077)."""
         if self._abort_homing():
             return
+        if self._following:  # slave: the following ramps down, its activation stays (L1977)
+            self.follower.hold()  # type: ignore[union-attr]
         if self._con is not None or self._jog:
             self.stop_motion()  # CON is switched off (L2077), a jog ends
             return
@@ -395,6 +427,8 @@ class ClmAxis(AxisReferences):
 
     def resume(self) -> None:
         """The next Start: the kept remaining distance first."""
+        if self.follower is not None:  # slave: synchronize again when on (L1978)
+            self.follower.release()
         if self._kept:
             self._kept = False
             self._start()
@@ -405,6 +439,13 @@ class ClmAxis(AxisReferences):
         if not ax.powered:
             return None
         d, j = self.deceleration, self._jerk()
+        if self._following:  # slave: only the own part brakes
+            f = self.follower
+            assert f is not None
+            if f.own_done:
+                return Fraction(f.u)
+            self._braking = True
+            return Fraction(f.own_velocity(0.0, d, d, j))
         if ax.command_velocity == 0.0 and ax.command_acceleration == 0.0 and ax.motion_ended:
             if ax.active_command is not None:
                 ax.halt()
@@ -440,6 +481,8 @@ class ClmAxis(AxisReferences):
             ax.power(False)
             ax.power(True)
         self._target = Fraction(ax.actual_position)
+        if self.follower is not None and self.follower.attached:  # slave: in the own part's frame
+            self._target -= Fraction(self.follower.follow_position)
         self.loop.resync()
 
     def jog(self, direction: int) -> None:
@@ -457,6 +500,11 @@ class ClmAxis(AxisReferences):
         self._con = None
         self._kept = self._blocked = self._braking = False
         a, d, j = self.acceleration, self.deceleration, self._jerk()
+        if self._following:  # slave jog keys: only the slave moves (L3495)
+            self.follower.own_velocity(direction * self._vjog, a, d, j)  # type: ignore[union-attr]
+            self._jog = direction
+            self._target = None
+            return
         if self._limits_apply():
             limit = (self._max if direction > 0 else self._min) + self._sac_shift
             if (Fraction(ax.command_position) - limit) * direction >= 0:
@@ -504,13 +552,19 @@ class ClmAxis(AxisReferences):
             self._on_cycles = 0
             ax.power(True)
             self.loop.resync()
+            if self.follower is not None:  # slave: couple to the master (slave.py)
+                self.follower.attach()
             if self._blocked:
                 self._start()
         elif not run and self._drive_on:
             self._drive_off()
         elif run:
             self._on_cycles += 1
-        if self._braking and ax.motion_ended and ax.command_velocity == 0.0:
+            if self.follower is not None:  # slave: coupled again after CPL / homing
+                self.follower.keep()
+        if self._braking and self._following:  # slave: the own part's stop
+            self._braking = not self.follower.own_done  # type: ignore[union-attr]
+        elif self._braking and ax.motion_ended and ax.command_velocity == 0.0:
             self._braking = False
             ax.halt()  # the kernel's state: STANDSTILL
         fault = self._homing_tick(mode)
@@ -556,6 +610,8 @@ class ClmAxis(AxisReferences):
         self._jog = 0
         self._kept = self._blocked = self._braking = False
         self._target = None
+        if self.follower is not None:  # slave: the kernel drops the sync
+            self.follower.detach()
         self.axis.power(False)
 
     def fault_stop(self) -> None:
@@ -579,6 +635,8 @@ class ClmAxis(AxisReferences):
         if self._sac_shift:  # SAC: the initial coordinate system again (L2510)
             self._shift(-self._sac_shift)
             self._sac_shift = Fraction(0)
+        if self.follower is not None:  # FOL: mode 1, factor 1 after an error acknowledge (L1967)
+            self.follower.defaults()
 
     def _outputs(self) -> None:
         img = self.image
@@ -594,6 +652,8 @@ class ClmAxis(AxisReferences):
             mode14 = self._monitor_mode
             silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
             img.set(self._ax14_out, int(silent))
+        if self.follower is not None:  # M1.x0.0 "Axis x synchronous" (spec §4.6)
+            img.set(Operand("M", 1, self.number * 10, 0), int(self.follower.synchronous))
 
     # ------------------------------------------------------------------ state
 
@@ -601,6 +661,9 @@ class ClmAxis(AxisReferences):
     def motion_done(self) -> bool:
         """The set point has reached its target: nothing running, kept or waiting."""
         ax = self.axis
+        if self._following:  # slave: the own part has ended (the following goes on)
+            return (self._con is None and not self._jog and not self._kept and not self._blocked and not self._braking
+                    and self.follower.own_done)  # type: ignore[union-attr]
         return (self._con is None and not self._jog and not self._kept and not self._blocked and not self._braking
                 and ax.motion_ended and ax.command_velocity == 0.0)
 
@@ -612,6 +675,10 @@ class ClmAxis(AxisReferences):
     def _at_target(self, window: float) -> bool:
         if not (self._drive_on and self.motion_done):
             return False
+        if self._following:  # slave: the own part's set point at its target (slave.py 7)
+            f = self.follower
+            assert f is not None
+            return self._tf is None or abs(self._tf - f.u) <= window
         goal = self._tf if self._tf is not None else self.axis.command_position
         return abs(goal - self.axis.actual_position) <= window
 

@@ -3,7 +3,7 @@
 One function per mnemonic, ``handler(rt, task, ins) -> next instruction | None (wait)``,
 collected in `HANDLERS`. Field values are read through the runtime (`rt.value`), which fits a
 variable to its field (fault 32) and checks an axis (16, 4E). The commands of the axis
-functions (part 3: FOL, FUN, RSV) and of
+functions (part 3: FUN, RSV) and of
 the flying cutoff (part 4: LML, LMK, LMR, EOS, MLO, MLT) are not in this version: reaching one
 stops the program with fault 0A and says so. VCC, VEO and AEO are here, their state and
 decisions in `override` (rt.velocity); SRM, REP, SRP and RMI in `registration`
@@ -33,6 +33,7 @@ Decisions (spec line -> choice, why)
 
 from __future__ import annotations
 
+from fractions import Fraction
 from typing import TYPE_CHECKING
 
 from .errors import ClmError
@@ -49,7 +50,7 @@ __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
 LATER = {
-    **dict.fromkeys(("FOL", "FUN", "RSV"), "part 3 (axis functions)"),
+    **dict.fromkeys(("FUN", "RSV"), "part 3 (axis functions)"),
     **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
 }
 
@@ -488,6 +489,14 @@ def op_sac(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     return _next(task)
 
 
+def op_fol(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """FOL a on/off mode factor: one cycle; no function unless Ax00 mode 1/2 (slave.py 3)."""
+    follower = rt.axis(ins, 0).follower
+    if follower is not None:
+        follower.fol(str(ins.values[1]) == "1", str(ins.values[2]) == "2", Fraction(rt.number(ins, 3), 1_000_000))
+    return _next(task)
+
+
 def _later(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     raise ClmError("0A", f"{ins.mnemonic} is not available in this version of axisline (it comes with {LATER[ins.mnemonic]})")
 
@@ -501,7 +510,7 @@ HANDLERS: dict[str, Handler] = {
     "TXT": op_txt, "WAI": op_wai, "VCC": op_vcc, "VEO": op_veo, "AEO": op_aeo,
     "POA": _position(True, False), "POI": _position(False, False),
     "PSA": _position(True, True), "PSI": _position(False, True),
-    "HOM": op_hom, "RTM": op_rtm, "SAC": op_sac,
+    "HOM": op_hom, "FOL": op_fol, "RTM": op_rtm, "SAC": op_sac,
     "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi,
     **dict.fromkeys(LATER, _later),
 }

@@ -137,6 +137,8 @@ class ClmPersonality(Personality):
 
         cycle_s = float(machine.period)
         axes = {n: ClmAxis(n, machine, name, self.memory.parameters, self.memory.image, cycle_s) for n, name in enumerate(config.axes, start=1)}
+        for clm_axis in axes.values():  # a slave finds its master axis (slave.py)
+            clm_axis.peers = axes
         self.rt = ClmRuntime(self.memory, axes, cycle_s)
         self.rt.on_move = self._moved
         self._wire_marks(config)
