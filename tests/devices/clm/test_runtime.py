@@ -249,3 +249,24 @@ def test_time_counter_clears():
     assert rig.var(19) == 1.0
     rig.rt.clear_time_counter()
     assert rig.var(19) == 0.0
+
+
+def test_fak_5_resets_on_clearing_an_error_and_leaving_parameter_mode():
+    """L1935-1937: the master encoder 1 factor (FAK 5) is reset to 1.000000 after power up, after an
+    error is cleared, or after exiting Parameter Mode."""
+    rig = Rig("0000 FAK 5 1.500000\n0001 RTS\n")
+    rig.run()
+    rig.start()
+    assert rig.rt.master_factor == 1_500_000
+    rig.run()
+    assert rig.fault == "0C"
+    rig.set("I0.00.7", 1)
+    rig.run()
+    assert rig.fault is None and rig.rt.master_factor == 1_000_000
+    rig.set("I0.00.7", 0)
+    rig.rt.master_factor = 1_500_000
+    rig.set_mode("parameter")
+    rig.run()
+    rig.set_mode("manual")
+    rig.run()
+    assert rig.rt.master_factor == 1_000_000

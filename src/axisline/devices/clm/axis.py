@@ -254,13 +254,23 @@ class ClmAxis(AxisReferences):
         if self._con is not None or self._jog or not self.motion_done:
             self.stop_motion()
 
+    #: AEO (override.py decision 12): IU/s^2 for both ramps of the following positionings, or None
+    aeo_acceleration: float | None = None
+
     @property
     def acceleration(self) -> float:
-        return self._ramp(self._acc[0])
+        a = self.aeo_acceleration
+        return self._ramp(self._acc[0]) if a is None else a
 
     @property
     def deceleration(self) -> float:
-        return self._ramp(self._acc[1])
+        a = self.aeo_acceleration
+        return self._ramp(self._acc[1]) if a is None else a
+
+    @property
+    def ax09_acceleration(self) -> float:
+        """Ax09's acceleration in IU/s^2 (per mille of Ax08, decision 6): AEO's "Parameter Ax09"."""
+        return self._ramp(self._ax09[0])
 
     def _ramp(self, per_mille: int) -> float:
         return float(self._a08 if per_mille == 0 else self._a08 * per_mille / 1000)

@@ -463,7 +463,7 @@ def op_veo(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 
 def op_aeo(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     """AEO a x y sss mmm: one cycle (L1446)."""
-    rt.velocity.aeo(rt.axis(ins, 0), str(ins.values[1]) == "1")
+    rt.velocity.aeo(rt.axis(ins, 0), str(ins.values[1]) == "1", rt.number(ins, 3), rt.number(ins, 4))
     return _next(task)
 
 

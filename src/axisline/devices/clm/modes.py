@@ -183,6 +183,7 @@ class ModeMachine:
         rt = self.rt
         params = rt.memory.parameters
         rt.memory.leave_parameter_mode()
+        rt.master_factor = 1_000_000  # FAK 5 back to 1.000000 (L1935-1937)
         self._parameter_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
         self.enabled_axes = self._parameter_axes - self.interface_off
         self._take_parameters()
@@ -386,6 +387,7 @@ class ModeMachine:
             return
         self._clear_outputs_b018(on_fault=False)
         self.fault_error = None
+        self.rt.master_factor = 1_000_000  # FAK 5 back to 1.000000 after an error is cleared (L1935-1937)
         self.restart_from_zero = True
         for axis in self.rt.axes.values():  # the drives may be enabled again
             axis.clear_fault()

@@ -62,11 +62,23 @@ Decisions (spec line -> choice, why)
    (L2865 "all of the programmed traversing commands"); test_vcc_mode0_skipped_beyond_the_move.
 10. VCC mode 1 needs a reference (L2844 "must be homed") -> fault 48 without one; a negative
     switching point on a rotary table (motion type 2) -> 1E (B018 list); test_vcc_errors.
-11. Master encoder 1 (VEO mode 5 L2880-2893, AEO L1448-1466) -> the formulas are here
-    (`veo_master_override`, `aeo_acceleration`, error 4D beyond 1.25 Vmax) but the plant has no
-    master encoder for the CLM yet: with C000-C003 not set up (Ax00 not a normal axis) the
-    command proceeds at once as the manual says; with master encoder 1 in use it stops with 0A
-    "comes with the master encoders"; test_master_encoder_formulas, test_veo5_and_aeo_without_master.
+11. Master encoder 1 (VEO mode 5 L2880-2893, AEO L1448-1466) -> both need the axis in Ax00 mode
+    0 and master encoder 1 set up (master_encoder.py decision 6: wired on the plant with
+    ``device.master_encoder_1``, C000 and C002 in range); otherwise the command proceeds at
+    once (L2880, L1450); test_veo5_and_aeo_without_master.
+12. VEO 5 (Fig. 5-33) -> override = |V011| / Ax06 x multiplier, taken every cycle (the
+    running positioning is replanned when it changes); the multiplier is 1 (FOL edits it, but
+    FOL has no function on a normal axis, slave.py decision 3); use digit 0 = factor of the
+    programmed velocity, 1 = limit override x Ax06, as the other sources (decision 4). L2889
+    vs L2891: the overridden velocity is capped at Ax06, and while a positioning runs an
+    uncapped programmed x factor above 1.25 x Ax06 is fault 4D (x = axis, "Max. Override");
+    test_veo5_scales_the_feed_with_the_line, test_veo5_above_125_percent_is_4d.
+13. AEO a x y sss mmm (commands decision C-LOST) -> while on, every cycle a = Ax09 x V011^2 /
+    Ax06^2 x sss / 1000 (Fig. 5-5), not below mmm per mille of Ax09, "Parameter Ax09" being
+    Ax09's acceleration in IU/s^2; it serves both ramps of every positioning started after it
+    (a running one keeps its ramps: "as for the ACC command ... completed", L1454, axis
+    decision 7); AEO x = 0 or a change of mode ends it (like ACC's reset to Ax09, L1413);
+    test_aeo_acceleration_follows_the_line.
 """
 
 from __future__ import annotations
@@ -173,6 +185,7 @@ class VelocityFunctions:
         self._mode: str | None = None
         self._state: dict[int, _AxisOverride] = {}
         self._b017: dict[int, int] = {}  # B017's override source per axis (taken at a mode change)
+        self.aeo_on: dict[int, tuple[int, int]] = {}  # axis -> (scale, minimum per mille), AEO on
         self._idle = False  # no source in use and every factor reset: nothing to do per cycle
         self.needs_analog = False
         for n, axis in rt.axes.items():
@@ -192,6 +205,9 @@ class VelocityFunctions:
         if mode != self._mode:
             if self._mode is not None:
                 self.veo.clear()  # decision 5
+                for n in self.aeo_on:  # decision 13
+                    self.rt.axes[n].aeo_acceleration = None
+                self.aeo_on.clear()
             self._mode = mode
             b017 = self.rt.memory.parameters.get("B017")
             for n, ov in self._state.items():
@@ -200,6 +216,8 @@ class VelocityFunctions:
             self._update_needs_analog()
         if not self._state:
             return
+        if self.aeo_on:
+            self._aeo_tick()
         if not self.veo and not any(self._b017.values()):
             if self._idle:  # the common case: no override at all costs nothing per cycle
                 return
@@ -211,6 +229,22 @@ class VelocityFunctions:
             if factor != ov.factor or limit != ov.limit:
                 ov.factor, ov.limit = factor, limit
                 self.rt.axes[n].change_speed()
+            veo = self.veo.get(n)
+            if veo is not None and veo.source == 5 and factor is not None:
+                axis = self.rt.axes[n]
+                if axis.target is not None and not axis.motion_done and axis.speed * factor > MAX_OVERRIDE * ov.vmax:
+                    raise ClmError(axis_fault(0x0D, n), f"VEO 5: axis {n} at {axis.speed * factor:.1f} IU/s > 1.25 x Ax06 (L2889)")
+
+    def _master_velocity(self) -> float:
+        me = self.rt.master_encoder
+        return 0.0 if me is None else abs(me.velocity)
+
+    def _aeo_tick(self) -> None:
+        v = self._master_velocity()
+        for n, (scale, minimum) in self.aeo_on.items():
+            axis = self.rt.axes[n]
+            a09 = axis.ax09_acceleration
+            axis.aeo_acceleration = aeo_acceleration(a09, v, self._vmax(n), scale, a09 * minimum / 1000)
 
     def _override(self, n: int, b017: int, vmax: float) -> tuple[float | None, float | None]:
         veo = self.veo.get(n)
@@ -219,6 +253,9 @@ class VelocityFunctions:
             return (None if f is None else float(f)), None
         if veo.source == 4:
             f = Fraction(veo.value, 1000)
+        elif veo.source == 5:  # decision 12: capped at Ax06
+            m = veo_master_override(self._master_velocity(), vmax)
+            return (None, min(m, 1.0) * vmax) if veo.limit else (m, vmax)
         else:
             f = self._source_factor(n, {1: n, 2: B017_BINARY, 3: B017_GRAY}[veo.source])
             assert f is not None
@@ -246,9 +283,9 @@ class VelocityFunctions:
         if source == 0:
             self.veo.pop(n, None)
         elif source == 5:
-            if params.axis_mode(n) != 0 or not params.master_encoder_1_used():
+            if not self.master_ready(n):
                 return  # L2880 "Otherwise, the program proceeds to the following instruction"
-            raise ClmError("0A", "VEO mode 5 needs master encoder 1 on the plant: it comes with the master encoders")
+            self.veo[n] = Veo(source, value, limit)
         else:
             self.veo[n] = Veo(source, value, limit)
         self._update_needs_analog()
@@ -259,12 +296,22 @@ class VelocityFunctions:
                 ov.factor, ov.limit = factor, lim
                 axis.change_speed()
 
-    def aeo(self, axis: Any, on: bool) -> None:
-        """AEO (decision 11): without master encoder 1 in use it does nothing (L1448-1450)."""
-        params = self.rt.memory.parameters
-        if not on or params.axis_mode(axis.number) != 0 or not params.master_encoder_1_used():
+    def master_ready(self, n: int) -> bool:
+        """Axis `n` a normal axis and master encoder 1 set up (decision 11)."""
+        me = self.rt.master_encoder
+        return me is not None and self.rt.memory.parameters.axis_mode(n) == 0 and me.set_up
+
+    def aeo(self, axis: Any, on: bool, scale: int = 1000, minimum: int = 0) -> None:
+        """AEO (decisions 11, 13): without master encoder 1 set up it does nothing (L1448-1450)."""
+        n = axis.number
+        if not on:
+            if self.aeo_on.pop(n, None) is not None:
+                axis.aeo_acceleration = None
             return
-        raise ClmError("0A", "AEO needs master encoder 1 on the plant: it comes with the master encoders")
+        if not self.master_ready(n):
+            return
+        self.aeo_on[n] = (scale, minimum)
+        self._aeo_tick()
 
     def positioned(self, axis: Any) -> None:
         """A POA/POI/PSA/PSI starts now: VCC mode 0 measures from here (decision 8)."""

@@ -90,6 +90,9 @@ class ClmConfig(BaseModel):
     analog_inputs: dict[AnalogName, Annotated[float, Field(ge=-10.0, le=10.0)]] = Field(
         default_factory=dict, description="analog inputs AE1..AE4 in volts (B017/VEO override: 0-10 V = 0-100 %); unset: 0 V"
     )
+    master_encoder_1: Name | None = Field(
+        None, description="a [[master]] of kind 'wheel' whose encoder is the CLM's master encoder 1 (X1; C000-C003, master_encoder.py); none: not connected"
+    )
     start_at: float | None = Field(None, ge=0.0, le=1e6, description="press Start this many seconds after power-on (none: only the wired input or !START)")
     report_output: OutputName | None = Field(
         None, description="the CLM output whose rising edge the report records (the press signal): the position error of axis 1 then"
@@ -131,6 +134,14 @@ class ClmPersonality(Personality):
         self._input_places = [(ProcessImage.locate(op), source) for op, source in self._inputs]
         self._output_places = [(ProcessImage.locate(op), name) for op, name in self._outputs]
         self._check_cycle(problems)
+        me_master = None
+        if config.master_encoder_1 is not None:
+            kinds = {m.name: m.kind for m in mc.master}
+            if kinds.get(config.master_encoder_1) != "wheel":
+                have = ", ".join(n for n, k in kinds.items() if k == "wheel") or "none"
+                problems.append(f"device.master_encoder_1 = {config.master_encoder_1!r}: no [[master]] of kind 'wheel' of that name (wheels: {have})")
+            else:
+                me_master = machine.masters[config.master_encoder_1]
         if problems:
             raise ConfigError(self.source, problems)
         from .axis import ClmAxis
@@ -141,6 +152,11 @@ class ClmPersonality(Personality):
             clm_axis.peers = axes
         self.rt = ClmRuntime(self.memory, axes, cycle_s)
         self.rt.on_move = self._moved
+        if me_master is not None:
+            from .master_encoder import MasterEncoder1
+
+            self.rt.master_encoder = MasterEncoder1(me_master, self.rt)
+        self._master_encoder = self.rt.master_encoder
         self._wire_marks(config)
         self.analog = AnalogIO(ANALOG_INPUTS)  # AE1..AE4 (a test or the operator may set_input them)
         for name, volts in config.analog_inputs.items():
@@ -263,6 +279,8 @@ class ClmPersonality(Personality):
         if self.rt.velocity.needs_analog:  # (AE1..AE4 are read only by an override)
             self.analog.sample()
             self.rt.velocity.analog_volts[:] = [self.analog.read(name) for name in ANALOG_INPUTS]
+        if self._master_encoder is not None:  # (nothing per cycle without master encoder 1)
+            self._master_encoder.sample(cycle)
         self.rt.step()
         self._ever_ran = self._ever_ran or self.rt.modes.running
         if self.store is not None:

@@ -61,6 +61,7 @@ class ClmRuntime:
         self.cycle = 0
         self.tasks = [NcTask(n) for n in range(1, 6)]
         self.master_factor = _SCALE  # FAK 5: master encoder 1's feed constant factor
+        self.master_encoder: Any = None  # master_encoder.MasterEncoder1 when wired on the plant
         self.message = ""  # Status 53 text (TXT mode 1)
         self.text_lines = [""] * 4  # Status 63 (TXT mode 0)
         self._txt_run: tuple[int, int] = (-1, 0)  # (cycle, next line) of the TXT run in progress
@@ -261,6 +262,9 @@ class ClmRuntime:
             return self.tasks[number - 2].pc * _SCALE
         if number == 19:
             return int((self.cycle - self._time_origin) * self.nc_cycle_s / 3600) * _SCALE
+        if number == 11:  # V011: master encoder 1's velocity, IU/s (master_encoder.py decision 4)
+            me = self.master_encoder
+            return None if me is None else round(me.velocity * _SCALE)
         axis = self.axes.get(number // 100) if number >= 100 else None
         if axis is None:
             return None

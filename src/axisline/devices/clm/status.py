@@ -30,7 +30,8 @@ status  reply body (``_`` = blank)                                   source
 60      ``60_a_nnnn_``  where the fault is (0 par., 1 NC, 2 LT, 3 V) L7273-7294
 61      ``61_mt.nn_bbbbbbbb_``  one byte of I/Q/M, bit 7 first       L7296-7315
 63      ``63_<16/32/48/64 characters>_``  TXT mode 0 lines v..b      L7317-7335
-09 41 47 54  not yet available in axisline (decision 5)
+47      ``47_0_+0090.00_``  master encoder 1 in 1/min (master_encoder.py 5) L7175-7193
+09 54   not yet available in axisline (decision 5)
 ======  ==========================================================  =====================
 
 Decisions (spec line -> choice, why)
@@ -59,7 +60,8 @@ Decisions (spec line -> choice, why)
 5. C-NOT-AVAILABLE, issue 12 ("answer the CLM's 'not available' until then"): Status 47 (and 09,
    the measuring wheel's position) answer error 10 "M-Wheel Param Error" when the measuring
    wheel is not set up, as L7193 says the CLM does for 47 (C000 without a resolution; for 09:
-   axis 1 not in measuring-wheel mode 3/4); with the wheel set up, and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271;
+   axis 1 not in measuring-wheel mode 3/4); with the wheel set up (47: but no master encoder 1
+   wired on the plant, ``device.master_encoder_1``, else its value), and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271;
    part 4), error 09 "Status # illegal" ("status information that was not present in the
    CLM", L6815): a host reads that the value does not exist, not that a parameter is wrong.
    Status 01 itself is 09 ("can *not* be queried", L6791). Test:
@@ -292,6 +294,8 @@ def _measuring_wheel(rt: Any, number: int) -> ClmError:
         set_up = params.axis_mode(1) in (3, 4)
     if not set_up:
         return ClmError(serial_code(10), f"Status {number:02d}: the measuring wheel is not set up (C000 / A100)")
+    if number == 47:
+        return ClmError(serial_code(9), "Status 47: master encoder 1 is not connected on the plant (device.master_encoder_1)")
     return ClmError(serial_code(9), f"Status {number:02d}: the measuring wheel is part 3 of axisline's CLM, not yet available")
 
 
@@ -334,7 +338,12 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
         return _status_61(rt, args)
     if number == 63:
         return _status_63(rt, args)
-    if number in (9, 47):
+    if number == 47:
+        me = getattr(rt, "master_encoder", None)
+        if me is None or int(rt.memory.parameters.get("C000")["graduation"]) == 0:
+            raise _measuring_wheel(rt, number)
+        return f"47 0 {_fixed(max(-9999.99, min(9999.99, me.rpm)), 4, 2)} "  # master_encoder.py decision 5
+    if number == 9:
         raise _measuring_wheel(rt, number)
     if number == 41:  # the axis-1 position latched at the last raster (registration decision 6)
         axis = _axis(rt, 1)
