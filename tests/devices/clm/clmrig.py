@@ -142,3 +142,26 @@ class Rig:
     def fault(self) -> str | None:
         e = self.rt.modes.fault_error
         return None if e is None else e.code
+
+
+# -- the roll feed machine as a base for plant tests ----------------------------------------
+
+from pathlib import Path  # noqa: E402
+
+EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
+
+
+def with_parameters(par_text: str, params: dict[str, str]) -> str:
+    """A parameter listing with `params` (id -> data) in place of its own lines for them."""
+    for pid, data in params.items():
+        lines = [line for line in par_text.splitlines() if not line.startswith(pid + " ") and line != pid]
+        par_text = "\n".join(lines + [f"{pid} {data}"]) + "\n"
+    return par_text
+
+
+def roll_feed_text(program: Path, parameters: Path) -> str:
+    """examples/roll_feed_clm.toml running `program` with `parameters`, no Logic Task, no variables."""
+    text = (EXAMPLES / "roll_feed_clm.toml").read_text()
+    text = text.replace('program = "clm/roll_feed.prg"', f'program = "{program.as_posix()}"')
+    text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{parameters.as_posix()}"')
+    return text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")

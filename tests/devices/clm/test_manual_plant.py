@@ -8,21 +8,16 @@ from pathlib import Path
 
 from axisline.machine import Machine
 
+from .clmrig import roll_feed_text, with_parameters
+
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 
 
 def machine(tmp_path: Path, program: str, params: dict[str, str] | None = None, duration: float = 30.0) -> Machine:
     prg = tmp_path / "test.prg"
     prg.write_text(program)
-    par_text = (EXAMPLES / "clm" / "roll_feed.par").read_text()
-    for pid, data in (params or {}).items():
-        lines = [line for line in par_text.splitlines() if not line.startswith(pid + " ") and line != pid]
-        par_text = "\n".join(lines + [f"{pid} {data}"]) + "\n"
-    (tmp_path / "test.par").write_text(par_text)
-    text = (EXAMPLES / "roll_feed_clm.toml").read_text()
-    text = text.replace('program = "clm/roll_feed.prg"', f'program = "{prg.as_posix()}"')
-    text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{(tmp_path / "test.par").as_posix()}"')
-    text = text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
+    (tmp_path / "test.par").write_text(with_parameters((EXAMPLES / "clm" / "roll_feed.par").read_text(), params or {}))
+    text = roll_feed_text(prg, tmp_path / "test.par")
     text = text.replace("duration = 60.0", f"duration = {duration}")
     path = tmp_path / "m.toml"
     path.write_text(text)

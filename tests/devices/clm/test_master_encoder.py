@@ -14,6 +14,8 @@ from axisline.configerrors import ConfigError
 from axisline.devices.clm.status import status_body
 from axisline.machine import Machine
 
+from .clmrig import roll_feed_text, with_parameters
+
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 COUNT_MM = 200 / (4 * 1250)  # C002 200 mm per revolution / (4 x C000 1250 lines)
 QUANTUM = COUNT_MM / (32 * 0.002)  # one count in the 32-cycle average, mm/s
@@ -26,14 +28,8 @@ def machine(tmp_path: Path, program: str, speeds: list[tuple[float, float]], par
     prg = tmp_path / "test.prg"
     prg.write_text(program)
     par_text = (EXAMPLES / "clm" / "roll_feed.par").read_text()
-    for pid, data in {"C002": "0200.00000", **(params or {})}.items():
-        lines = [line for line in par_text.splitlines() if not line.startswith(pid + " ") and line != pid]
-        par_text = "\n".join(lines + [f"{pid} {data}"]) + "\n"
-    (tmp_path / "test.par").write_text(par_text)
-    text = (EXAMPLES / "roll_feed_clm.toml").read_text()
-    text = text.replace('program = "clm/roll_feed.prg"', f'program = "{prg.as_posix()}"')
-    text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{(tmp_path / "test.par").as_posix()}"')
-    text = text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
+    (tmp_path / "test.par").write_text(with_parameters(par_text, {"C002": "0200.00000", **(params or {})}))
+    text = roll_feed_text(prg, tmp_path / "test.par")
     text = text.replace("start_at = 0.1 ", f'master_encoder_1 = "{wire}"\nstart_at = 0.1 ')
     text += "\n[material]\nspeed = 0.0\n"
     for t, v in speeds:

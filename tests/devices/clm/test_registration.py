@@ -10,6 +10,8 @@ from pathlib import Path
 
 from axisline.machine import Machine
 
+from .clmrig import roll_feed_text
+
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 
 
@@ -20,10 +22,7 @@ def machine(tmp_path: Path, program: str, marks: list[float], inputs: tuple[str,
     for pid, data in {**(params or {}), **({"B011": b011} if b011 else {})}.items():
         par = "\n".join(line if not line.startswith(pid + " ") else f"{pid} {data}" for line in par.splitlines()) + "\n"
     (tmp_path / "t.par").write_text(par)
-    text = (EXAMPLES / "roll_feed_clm.toml").read_text()
-    text = text.replace('program = "clm/roll_feed.prg"', f'program = "{(tmp_path / "t.prg").as_posix()}"')
-    text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{(tmp_path / "t.par").as_posix()}"')
-    text = text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
+    text = roll_feed_text(tmp_path / "t.prg", tmp_path / "t.par")
     wiring = "".join(f'"{name}" = "marks"\n' for name in inputs)
     text = text.replace('"I1.00.2" = true', wiring + '"I1.00.2" = true')
     text = text.replace('report_output = "Q1.00.0"\n', "")

@@ -8,6 +8,8 @@ from pathlib import Path
 
 from axisline.machine import Machine
 
+from .clmrig import roll_feed_text
+
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 
 
@@ -26,13 +28,10 @@ def machine(tmp_path: Path, program: str, a200: str = "1 0 0 2 0", duration: flo
             line = "B000 1 0 0"
         out.append(line)
     (tmp_path / "test.par").write_text("\n".join(out) + "\n")
-    text = (EXAMPLES / "roll_feed_clm.toml").read_text()
+    text = roll_feed_text(prg, tmp_path / "test.par")
     block = text[text.index("[[axis]]"):text.index("[io]")]
     text = text.replace(block, block + block.replace('name = "feed"', 'name = "slave"'))
     text = text.replace('axes = ["feed"]', 'axes = ["feed", "slave"]')
-    text = text.replace('program = "clm/roll_feed.prg"', f'program = "{prg.as_posix()}"')
-    text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{(tmp_path / "test.par").as_posix()}"')
-    text = text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
     text = text.replace("duration = 60.0", f"duration = {duration}")
     path = tmp_path / "m.toml"
     path.write_text(text)
