@@ -253,6 +253,13 @@ def test_overshooting_start_reverses_and_matches_ruckig():
     assert prof.duration == pytest.approx(ruckig_duration(start, target, lim), rel=1e-6)
 
 
+def test_a_root_search_across_infeasible_parameters_finds_the_profile():
+    """Found by hypothesis: from a = v = 1e-12 to the same p and v, the end error has a sign
+    change between two grid points with no profile in between: not a root, and no crash."""
+    start, target, lim = State(1e-12, 1e-12, 1e-12), State(1e-12, 1e-12, 0.0), Limits(v=1.0, a=1.0, d=1.0, j=1.0)
+    _same_duration_as_ruckig((start, target, lim))
+
+
 def test_a_start_one_ulp_below_the_velocity_limit_finds_the_loop_back():
     """Found by hypothesis: at p = 0 one ulp below v_max, reaching p = 0 at v_max needs a loop
     backwards whose peak is exactly v_max: the root sits on the end of the search interval,

@@ -336,8 +336,11 @@ def _integrate(r: _Ramp, v0: float, a0: float, a1: float, t2: float, t4: float, 
     return p, v, t
 
 
-def _illinois(f: Callable[[float], float], lo: float, hi: float, flo: float, fhi: float) -> float:
-    """Root of f in [lo, hi] with f(lo), f(hi) of opposite sign (modified regula falsi)."""
+def _illinois(f: Callable[[float], float | None], lo: float, hi: float, flo: float, fhi: float) -> float | None:
+    """Root of f in [lo, hi] with f(lo), f(hi) of opposite sign (modified regula falsi).
+
+    None when f has no value somewhere inside (no profile there): the sign change of the two
+    ends then spans a gap of infeasible parameters, not a root."""
     side = 0
     x = lo
     for _ in range(200):
@@ -345,6 +348,8 @@ def _illinois(f: Callable[[float], float], lo: float, hi: float, flo: float, fhi
         if not lo <= x <= hi:
             x = 0.5 * (lo + hi)
         fx = f(x)
+        if fx is None:
+            return None
         if fx == 0.0 or hi - lo <= 4e-16 * max(abs(lo), abs(hi), 1e-300):
             return x
         if (fx > 0.0) == (fhi > 0.0):
@@ -427,7 +432,9 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
             if abs(fx) <= zero:
                 make(x, at_edge)
             elif prev_f is not None and prev_x is not None and (fx > 0.0) != (prev_f > 0.0):
-                make(_illinois(lambda y: f(y, False), prev_x, x, prev_f, fx), False)
+                root = _illinois(lambda y: f(y, False), prev_x, x, prev_f, fx)
+                if root is not None:
+                    make(root, False)
             prev_x, prev_f = x, fx
 
     def add(a1: float, t2: float, edge: bool) -> None:
