@@ -113,11 +113,11 @@ import math
 from fractions import Fraction
 from typing import Any
 
-from axisline.motion.axis import AxisState
 from axisline.motion.profiles import Limits, State, plan_velocity
 
+from .axisdrive import BRAKE_DELAY_S, DRIVE_OUTPUTS, DriveMonitoring
 from .axisref import AxisReferences, _f
-from .clmloop import LAG, NONE, RUNAWAY, ClmLoop
+from .clmloop import ClmLoop
 from .errors import ClmError, axis_fault
 from .image import ProcessImage
 from .operands import Operand
@@ -126,19 +126,11 @@ from .slave import Follower
 
 __all__ = ["ClmAxis", "DRIVE_OUTPUTS", "BRAKE_DELAY_S"]
 
-#: Drive Enable and Brake outputs per axis (spec §6.3, L6010-6052).
-DRIVE_OUTPUTS = {
-    1: (Operand("Q", 0, 0, 3), Operand("Q", 0, 0, 4)),
-    2: (Operand("Q", 0, 0, 6), Operand("Q", 0, 0, 7)),
-    3: (Operand("Q", 0, 1, 6), Operand("Q", 0, 2, 0)),
-    4: (Operand("Q", 0, 1, 7), Operand("Q", 0, 2, 1)),
-}
-BRAKE_DELAY_S = 0.2  # L6058
 _MILLI = 1000  # program lengths are 1/1000 IU
 _MILLIONTH = 1_000_000  # FAK f.ffffff
 
 
-class ClmAxis(AxisReferences):
+class ClmAxis(DriveMonitoring, AxisReferences):
     """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
 
     # slave / synchronous axis (slave.py): the Follower of an Ax00 mode 1/2 axis, and the CLM's
@@ -550,121 +542,6 @@ class ClmAxis(AxisReferences):
             self._target += Fraction(delta)
         self.loop.resync()
 
-    # ------------------------------------------------------------------ per NC cycle
-
-    def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> ClmError | None:
-        """Drive Enable / Brake, the kernel axis' power, monitoring and outputs (decisions 4, 13-15)."""
-        ax = self.axis
-        self._ran = True
-        run = mode in ("manual", "automatic") and estop_ok and enable_input and self._enabled and self._switched_on and not self._fault
-        if run and not self._drive_on:
-            self._drive_on = True
-            self._on_cycles = 0
-            ax.power(True)
-            self.loop.resync()
-            if self.follower is not None:  # slave: couple to the master (slave.py)
-                self.follower.attach()
-            if self._blocked:
-                self._start()
-        elif not run and self._drive_on:
-            self._drive_off()
-        elif run:
-            self._on_cycles += 1
-            if self.follower is not None:  # slave: coupled again after CPL / homing
-                self.follower.keep()
-        if self._braking and self._following:  # slave: the own part's stop
-            self._braking = not self.follower.own_done  # type: ignore[union-attr]
-        elif self._braking and ax.motion_ended and ax.command_velocity == 0.0:
-            self._braking = False
-            ax.halt()  # the kernel's state: STANDSTILL
-        fault = self._homing_tick(mode)
-        if fault is None and not self._fault:
-            fault = self._find_fault(mode, enable_input)
-        if fault is not None:
-            self.fault_stop()
-        self._outputs()
-        return fault
-
-    def _find_fault(self, mode: str, enable_input: bool) -> ClmError | None:
-        n = self.number
-        if not self._switched_on:  # !MxOFF: "axis-specific faults disabled" (spec §8.6)
-            return None
-        if mode == "automatic" and self._enabled and not enable_input:
-            return ClmError(axis_fault(0x00, n), f"Enable Axis {n} missing in Automatic (L6039)")
-        if not self._drive_on:
-            return None
-        ax = self.axis
-        kind = self.loop.excess
-        if ax.state is AxisState.ERROR_STOP:  # the machine file's following_error_limit: a safety net
-            kind = LAG
-        mode14 = self._monitor_mode
-        if (kind == LAG and mode14 in (0, 3)) or (kind == RUNAWAY and mode14 in (0, 2)):
-            self._homed = False  # errata §3.8
-            self._homed_output(0)  # L3715-3717
-            what = "Excess Pos Lag" if kind == LAG else "Drive Runaway"
-            return ClmError(axis_fault(0x03 if kind == LAG else 0x02, n),
-                            f"{what}: deviation {self.loop.deviation:.3f} beyond the Ax14 window {self.window:.3f} (L4518-4532)")
-        if mode == "automatic" and self._limits_apply():
-            actual = ax.actual_position - float(self._sac_shift)
-            if actual < self._min_f:
-                return ClmError(axis_fault(0x06, n), f"actual {actual:.3f} below Ax03 = {self._min_f:.3f} (L4294)")
-            if actual > self._max_f:
-                return ClmError(axis_fault(0x07, n), f"actual {actual:.3f} above Ax04 = {self._max_f:.3f} (L4332)")
-        return None
-
-    def _drive_off(self) -> None:
-        """Drive Enable off at once: the amplifier is disabled, the motion is dropped."""
-        self._drive_on = False
-        self._on_cycles = 0
-        self._con = None
-        self._jog = 0
-        self._kept = self._blocked = self._braking = False
-        self._target = None
-        if self.follower is not None:  # slave: the kernel drops the sync
-            self.follower.detach()
-        self.axis.power(False)
-
-    def fault_stop(self) -> None:
-        """After any CLM error: Drive Enable and Brake off at once (spec §7.1), until `clear_fault`."""
-        self._fault = True
-        if self._drive_on:
-            self._drive_off()
-        self._outputs()
-
-    def interface_enable(self, on: bool) -> None:
-        """``!MxON`` / ``!MxOFF`` (spec §8.6): off, the drive enable and brake outputs drop and the
-        axis' own faults are not raised; on (also after power-on and an E-Stop) it runs again."""
-        self._switched_on = on
-
-    def clear_fault(self) -> None:
-        """External Clear / CL / !sCLEAR: the drive may be enabled again at the next tick."""
-        self._fault = False
-        if self.axis.state is AxisState.ERROR_STOP:
-            self.axis.reset()
-        self._shortest = self._ax05_shortest  # RTM: Ax05 again after an error acknowledge (L2484)
-        if self._sac_shift:  # SAC: the initial coordinate system again (L2510)
-            self._shift(-self._sac_shift)
-            self._sac_shift = Fraction(0)
-        if self.follower is not None:  # FOL: mode 1, factor 1 after an error acknowledge (L1967)
-            self.follower.defaults()
-
-    def _outputs(self) -> None:
-        img = self.image
-        on = self._drive_on
-        img.set(self._enable_out, int(on))
-        img.set(self._brake_out, int(on and self._on_cycles >= self._brake_cycles))
-        if not self._ax27_out.unset:  # (an output not programmed, 00.00.0, costs nothing)
-            img.set(self._ax27_out, int(self.in_position))
-        if not self._ax28_out.unset:
-            img.set(self._ax28_out, int(self._at_target(self._ax28)))
-        if not self._ax14_out.unset:
-            kind = self.loop.excess if on else NONE
-            mode14 = self._monitor_mode
-            silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
-            img.set(self._ax14_out, int(silent))
-        if self.follower is not None:  # M1.x0.0 "Axis x synchronous" (spec §4.6)
-            img.set(Operand("M", 1, self.number * 10, 0), int(self.follower.synchronous))
-
     # ------------------------------------------------------------------ state
 
     @property
@@ -691,14 +568,6 @@ class ClmAxis(AxisReferences):
             return self._tf is None or abs(self._tf - f.u) <= window
         goal = self._tf if self._tf is not None else self.axis.command_position
         return abs(goal - self.axis.actual_position) <= window
-
-    @property
-    def drive_enabled(self) -> bool:
-        return self._drive_on
-
-    @property
-    def faulted(self) -> bool:
-        return self._fault
 
     @property
     def _target(self) -> Fraction | None:
