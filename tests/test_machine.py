@@ -316,3 +316,17 @@ def test_logic_task_runs_at_its_sub_rate():
     m.scheduler.run(20)
     # one step per logic cycle, and logic cycles are 0, 4, 8, 12 (T = 1 ms)
     assert [round(e.t * 1000) for e in m.job.events] == [0, 4, 8, 12]
+
+
+def test_an_axis_starting_away_from_zero_is_enabled_where_it_stands(tmp_path):
+    """A drive whose initial position is 45 mm ([axis.drive] position): the axis' set point
+    starts there, so the power-on of the first cycle does not pull it to 0 (no following error)."""
+    text = (EXAMPLES / "positioning.toml").read_text().replace('type = "servo"', 'type = "servo"\nposition = 45.0', 1)
+    (tmp_path / "m.toml").write_text(text)
+    m = Machine.from_file(tmp_path / "m.toml")
+    axis = m.axis(m.config.axis[0].name)
+    assert axis.command_position == pytest.approx(45.0)
+    for _ in range(20):
+        m.scheduler.run_cycle()
+    assert axis.state is not AxisState.ERROR_STOP
+    assert abs(axis.following_error) < 0.1  # (the job starts moving at once: a lag, not 45 mm)

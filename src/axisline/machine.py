@@ -224,6 +224,9 @@ class Machine:
         encoder = entry.encoder.build(drive) if entry.encoder is not None else None
         unit = AxisUnit(axis, drive, encoder, entry)
         unit.actual_position = drive.position
+        # a disabled axis' set point follows the actual position: seed it with the plant's
+        # initial one, so an axis enabled in the first cycle is not pulled to 0
+        axis.position_loop(drive.position, 0.0)
         name = entry.name
         for sw in entry.switches:
             self.sensors[f"{name}.{sw.name}"] = Sensor(f"{name}.{sw.name}", sw.build(drive))

@@ -169,3 +169,83 @@ def test_option_2_marker_only(tmp_path):
     assert fault(m) is None and homed_output(m) == 1
     plant = m.units["table"].drive.position
     assert abs(plant - 2 * REV) < 3 * INC + 0.002  # markers at 0 (start), REV, 2 REV: the second after the first
+
+
+def cutoff_carriage(tmp_path: Path, switch_at: float = 20.0) -> Machine:
+    """The roll feed's axis as a flying-cutoff carriage (Ax00 mode 5, linear) with a home switch
+    from 20 to 30 mm on I1.00.3, Ax24 type 4 (option 5) with its Homed output on Q1.00.5,
+    Ax25 = -5; the CLM in Manual (I0.00.1 wired off) so the jog keys move it."""
+    from .clmrig import EXAMPLES as CLM_EXAMPLES, roll_feed_text, with_parameters
+
+    par = with_parameters((CLM_EXAMPLES / "clm" / "roll_feed.par").read_text(), {
+        "A100": "1 0 0 5 1", "A123": "00.00.0 I1.00.3", "A124": "Q1.00.5 +100 4", "A125": "-00005.000"})
+    (tmp_path / "c.par").write_text(par)
+    (tmp_path / "c.prg").write_text("0000 JMP 0000\n")
+    text = roll_feed_text(tmp_path / "c.prg", tmp_path / "c.par")
+    text = text.replace("[io]", f'[[axis.switches]]\nname = "home"\nkind = "reference"\nposition = {switch_at}\nwidth = 10.0\n\n[io]', 1)
+    text = text.replace('"I1.00.2" = true', '"I1.00.2" = true\n"I1.00.3" = "feed.home"\n"I0.00.1" = false', 1)
+    text = text.replace("start_at = 0.1", "start_at = 999.0")
+    (tmp_path / "m.toml").write_text(text)
+    return Machine.from_file(tmp_path / "m.toml")
+
+
+JOG_STEP = 100.0 * 0.002 + 0.01  # Ax07 = 100 mm/s x one 2 ms NC cycle, + the standstill lag
+
+
+def _jog(m: Machine, key: str, until) -> None:
+    from axisline.devices.clm.operands import parse_operand
+
+    image = m.device.memory.image
+    image.set(parse_operand(key, bit=True), 1)
+    run_until(m, 5.0, until)
+    image.set(parse_operand(key, bit=True), 0)
+    run_until(m, 0.5, lambda m: False)
+
+
+def test_option_5_passive_homing_on_the_switch_edges(tmp_path):
+    """Option 5 (L3797-3803, homing.py decision 9): Jog Forward from on the switch homes the
+    carriage where it leaves the switch (the switch's end at 30 mm gets -Ax25 = +5); Jog Reverse
+    from off the switch homes it where it reaches the switch; HOM is 52 for type 4 (L4739)."""
+    from axisline.devices.clm.operands import parse_operand
+
+    m = cutoff_carriage(tmp_path)
+    clm = m.device.rt.axes[1]
+    plant = m.units["feed"].drive
+    homed = lambda: m.device.memory.image.get(parse_operand("Q1.00.5", bit=True))  # noqa: E731
+    run_until(m, 0.3, lambda m: False)
+    assert m.device.rt.modes.mode == "manual" and clm.drive_enabled and not clm.homed
+    # jog reverse onto the switch from 0 is not possible (the switch is ahead): jog forward into it
+    _jog(m, "I0.01.0", lambda m: plant.position > 25.0)
+    assert not clm.homed  # reaching the switch moving forward is no reference
+    _jog(m, "I0.01.0", lambda m: plant.position > 40.0)  # leaves the switch at 30 moving forward
+    assert clm.homed and homed() == 1
+    # the switch end (plant 30 mm) reads +5 (= -Ax25): actual - plant offset is the same everywhere,
+    # to one NC cycle of travel at Ax07 (an ordinary input is sampled once per cycle)
+    assert clm.actual_position - plant.position == pytest.approx(5.0 - 30.0, abs=JOG_STEP)
+    # homed once: passing the switch again (reverse onto it) does not move the reference
+    _jog(m, "I0.01.1", lambda m: plant.position < 25.0)
+    assert clm.actual_position - plant.position == pytest.approx(-25.0, abs=JOG_STEP)
+
+
+def test_option_5_jog_reverse_onto_the_switch(tmp_path):
+    """Option 5 (L3799): not on the switch (here -30..-20 mm), Jog Reverse homes the carriage
+    where it reaches the switch (its end at -20 mm coming from above gets -Ax25 = +5)."""
+    m = cutoff_carriage(tmp_path, switch_at=-30.0)
+    clm = m.device.rt.axes[1]
+    plant = m.units["feed"].drive
+    run_until(m, 0.3, lambda m: False)
+    assert not clm.homed
+    _jog(m, "I0.01.1", lambda m: plant.position < -25.0)
+    assert clm.homed
+    assert clm.actual_position - plant.position == pytest.approx(5.0 + 20.0, abs=JOG_STEP)
+
+
+def test_option_5_hom_is_52(tmp_path):
+    """HOM with Ax24 type 4 (passive, L4739): error 52 HOM Command."""
+    from axisline.devices.clm.errors import ClmError
+
+    m = cutoff_carriage(tmp_path)
+    run_until(m, 0.3, lambda m: False)
+    with pytest.raises(ClmError) as e:
+        m.device.rt.axes[1].start_homing()
+    assert e.value.code == "52"

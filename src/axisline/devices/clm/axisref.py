@@ -59,6 +59,7 @@ class AxisReferences:
         self._ax25 = _f(params.get(a + "25").number("homing_offset"))
         self._homing_proc: Any = None
         self._homing_input_was = 1  # a rising edge needs a 0 first
+        self._switch_was: bool | None = None  # option 5: the home switch at the last cycle
         if getattr(self, "_sac_shift", 0):
             self.set_actual(self.axis.actual_position - float(self._sac_shift))
         self._sac_shift = Fraction(0)
@@ -220,8 +221,11 @@ class AxisReferences:
         return True
 
     def _homing_tick(self, mode: str) -> ClmError | None:
-        """The Homing input's rising edge in Manual; completion / failure of a running homing."""
+        """The Homing input's rising edge in Manual; completion / failure of a running homing;
+        option 5's passive reference."""
         err = None
+        if self._homing_type == 4 and not self._home_switch.unset:
+            self._passive_homing(mode)
         if not self._homing_in.unset:
             now = self.image.get(self._homing_in)
             if now and not self._homing_input_was and mode == "manual" and self._homing_proc is None and not self._fault:
@@ -248,6 +252,20 @@ class AxisReferences:
             if self._blocked:
                 self._start()
         return None
+
+    def _passive_homing(self, mode: str) -> None:
+        """Option 5 (L3797-3803, homing.py decision 9): homed where the axis leaves the home switch moving
+        forward (Jog Forward in Manual, the synchronized carriage in Automatic) or reaches it
+        moving in reverse (Jog Reverse, Manual); that point gets -Ax25 like options 3/4."""
+        on = bool(self.image.get(self._home_switch))
+        was, self._switch_was = self._switch_was, on
+        if was is None or on == was or self._homed or not self._drive_on:
+            return
+        velocity = self.axis.command_velocity
+        if (was and velocity > 0.0 and mode in ("manual", "automatic")) or (on and velocity < 0.0 and mode == "manual"):
+            self.set_actual(float(-self._ax25))
+            self._homed = True
+            self._homed_output(1)
 
     def _homed_output(self, value: int) -> None:
         out = getattr(self, "_homed_out", None)

@@ -1,4 +1,4 @@
-"""CLM1.4 homing options 1-4 (manual §7.9, L3694-3803; Ax23-Ax25, L4688-4754) as kernel
+"""CLM1.4 homing options 1-5 (manual §7.9, L3694-3803; Ax23-Ax25, L4688-4754) as kernel
 homing procedures on the encoder's index pulse (the marker) and the home switch cam.
 
     proc = ClmHoming(option=1, cam=lambda: image.get(home_switch), marker=EncoderMarker(unit),
@@ -44,6 +44,16 @@ Decisions (spec line -> choice, why)
 8. Options 3/4 (L3787-3795) -> V1 in direction d until the rising edge of the switch (option 4
    first leaves a switch it stands on, against d); the actual position at the edge cycle gets
    -Ax25 and the axis brakes to rest behind it. Test: test_option_3_and_4_switch_edge.
+9. Option 5, passive homing (L3797-3803; Ax24 type 4, flying cutoff only, L4741) -> no
+   procedure runs (HOM is 52): while the axis is not homed and its drive is enabled, the cycle
+   in which the home switch drops while the set point moves forward (Jog Forward in Manual, the
+   synchronized carriage in Automatic) or rises while it moves in reverse (Jog Reverse, Manual
+   only: L3799 names Manual) makes the actual position -Ax25 (as options 3/4: Ax25 is negative
+   in flying cutoff, L4754, so the zero point lies |Ax25| behind the switch edge) and sets the
+   Homed output. Once homed, passing the switch again changes nothing (a carriage re-referenced
+   at every return would shift its cut positions mid-run); the reference is lost as for every
+   option (Lag / Runaway, Parameter mode). Test: tests/devices/clm/test_homing.py::
+   test_option_5_passive_homing_on_the_switch_edges.
 """
 
 from __future__ import annotations
