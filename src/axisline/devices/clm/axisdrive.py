@@ -40,6 +40,10 @@ class DriveMonitoring:
     image: Any
     follower: Any
     number: int
+    feed_signals: Any
+    override: Any
+    _con: float | None
+    _speed: float
 
     # ------------------------------------------------------------------ per NC cycle
 
@@ -139,7 +143,19 @@ class DriveMonitoring:
         if self.follower is not None:  # FOL: mode 1, factor 1 after an error acknowledge (L1967)
             self.follower.defaults()
 
+    @property
+    def commanded_speed(self) -> float:
+        """IU/s the axis' own motion is commanded at: |CON| or the positioning's speed after the
+        override (Ax32's "Target Velocity Reached")."""
+        con = self._con
+        if con is not None:
+            return abs(con)
+        return self._speed if self.override is None else self.override(self._speed)
+
     def _outputs(self) -> None:
+        signals = self.feed_signals
+        if signals.active:  # Ax29 / Ax32 (feed_signals.py)
+            signals.tick(self)
         img = self.image
         on = self._drive_on
         img.set(self._enable_out, int(on))
