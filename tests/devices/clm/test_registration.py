@@ -214,3 +214,52 @@ def test_registration_feed_example_runs(tmp_path):
     assert [round(p["correction"], 3) for p in products[:2]] == [-10.0, -10.0]
     assert all(abs(p["measured"] - 20.0) < 0.8 and abs(p["correction"]) <= 10.0 for p in products[3:])
     assert "Registration (SRP) per product" in (tmp_path / "out" / "report.md").read_text()
+
+
+def test_rmi_outside_task_2_is_0a(tmp_path):
+    """Decision 7 (L2393 "The raster program must be programmed in Task 2"): RMI in Task 1 is
+    fault 0A when it runs."""
+    m = machine(tmp_path, "0000 RMI 1 0 I1.01.7\n0001 PSI 1 +000015.500 500\n0002 JST 0002\n", [52.0], ("I1.01.7",))
+    run(m, 0.5, lambda m: m.device.rt.modes.fault_error is not None)
+    e = m.device.rt.modes.fault_error
+    assert e is not None and e.code == "0A" and "Task 2" in str(e)
+
+
+def test_rmi_twice_without_resume_is_0a(tmp_path):
+    """Decision 7 (L2403 "Detecting an additional raster before the command RMI_1_1 is not
+    possible"): a Task 2 that waits for a second raster before its RMI 1 1 is fault 0A."""
+    task2 = "0200 RMI 1 0 I1.01.7\n0201 PSI 1 +000005.000 500\n0202 RMI 1 0 I1.01.7\n0203 JMP 0203\n"
+    m = machine(tmp_path, "0000 PSI 1 +000200.000 500\n0001 JST 0001\n" + task2, [52.0, 70.0], ("I1.01.7",), b011="0200 0000 0")
+    run(m, 2.0, lambda m: m.device.rt.modes.fault_error is not None)
+    e = m.device.rt.modes.fault_error
+    assert e is not None and e.code == "0A" and "RMI 1 1" in str(e)
+
+
+def test_rmi_short_offset_reverses(tmp_path):
+    """Decision 7 (L2405 "The offset feed must be longer than the braking distance, or the axis
+    will reverse"): at 499.5 mm/s the braking distance is 499.5^2 / (2 x 5000) = 25 mm; an
+    offset of 0.5 mm past the hole overshoots and comes back to hole + 0.5."""
+    task2 = "0200 RMI 1 0 I1.01.7\n0201 PSI 1 +000000.500 000\n0202 JMP 0202\n"
+    m = machine(tmp_path, "0000 PSI 1 +000300.000 999\n0001 JMP 0001\n" + task2, [150.0], ("I1.01.7",), b011="0200 0000 0")
+    peak = 0.0
+    for _ in range(round(2.0 / m.period)):
+        m.scheduler.run_cycle()
+        peak = max(peak, m.axis("feed").actual_position)
+    mark = m.device.rt.registration.latch41
+    assert 150.0 <= mark < 152.5
+    assert peak > mark + 20.0  # it ran on by about the braking distance ...
+    assert abs(m.axis("feed").actual_position - (mark + 0.5)) < 0.06  # ... and came back
+
+
+def test_srp_x_1_and_rmi_without_offset_are_check_warnings():
+    """Decisions 7 and 9: `axisline clm check` warns about SRP x = 1 (no meaning in the manual)
+    and about RMI 1 0 without the offset feed right after it (L2375)."""
+    from axisline.devices.clm.check import check_program
+    from axisline.devices.clm.files import read_program_text
+
+    prog, findings = read_program_text("0000 SRP 1 1 1 V600 M2.02\n0001 JST 0001\n0200 RMI 1 0 I1.01.7\n0201 WAI 00.100\n0202 RMI 1 1 I1.01.7\n0203 JMP 0200\n")
+    assert not [f for f in findings if f.is_error]
+    found = {(f.where, f.severity) for f in check_program(prog) if f.code == "0A"}
+    assert ("N0000", "warning") in found and ("N0200", "warning") in found
+    clean, _ = read_program_text("0000 SRP 1 1 0 V600 M2.02\n0001 JST 0001\n0200 RMI 1 0 I1.01.7\n0201 PSI 1 +000015.500 500\n0202 RMI 1 1 I1.01.7\n0203 JMP 0200\n")
+    assert not [f for f in check_program(clean) if f.code == "0A"]

@@ -10,7 +10,8 @@ instruction, which a maintainer wants to know before the machine stops on them):
 * 31 "Write Sys.-Var.": CVT markers -> variable into V000-V599;
 * 0E "Invalid Block #": BIC's largest jump beyond 2999 (L1576-1624); execution that runs off the
   last written instruction through NOPs to 3000 (warning: a task may never get there);
-* warnings: a jump into instructions never written (they are NOPs), CLC on an instruction that is
+* warnings: RMI 1 0 without its offset feed right after it, SRP with x = 1 (registration.py
+  decisions 7, 9), a jump into instructions never written (they are NOPs), CLC on an instruction that is
   no counter (skipped, L1702-1711), SET of V047/V048/Vx00 (allowed only while not homed), a
   counter's target in V999 (its count has no Vn+1 to go to);
 * with variables: a field fed by a variable whose stored value does not fit (32, with the reason,
@@ -102,6 +103,12 @@ def _instruction(ins: Instruction, program: Program, numbers: set[int], variable
         out += _bic(ins)
     if m == "SRM":
         out += _raster(ins)
+    if m == "RMI" and str(ins.values[1]) == "0":
+        follow = program[ins.number + 1] if ins.number + 1 < 3000 else None
+        if follow is None or follow.mnemonic not in ("POI", "PSI") or str(follow.values[0]) != "1":
+            out.append(Finding(w, "0A", "RMI 1 0: the offset feed (POI / PSI 1) must immediately follow it (L2375); the suspended feed is resumed without one", "warning"))
+    if m == "SRP" and str(ins.values[2]) != "0":
+        out.append(Finding(w, "0A", f"SRP x = {ins.values[2]}: the manual gives this digit no meaning (always 0 in its examples); axisline runs it as 0", "warning"))
     if m == "CVT" and ins.values[3] == "1" and isinstance(ins.values[0], Var) and ins.values[0].number < 600:
         out.append(Finding(w, "31", f"Write Sys.-Var.: CVT markers -> V{ins.values[0].number:03d}, a system variable (V600-V999 only)"))
     if m == "SET" and isinstance(ins.values[0], Var) and ins.values[0].number < 600:

@@ -45,6 +45,20 @@ Decisions (spec line -> choice, why)
    its target and speed kept; the PSI/POI of Task 2 then goes to mark + offset (000 per mille:
    the last speed); RMI 1 1 moves to the kept target at the kept speed and Task 1 goes on.
    Test: test_rmi_fig_5_20_suspends_and_resumes_the_feed.
+7. RMI constraints (L2391-2407) -> RMI in a task other than 2 is fault 0A when it runs (L2393
+   "must be programmed in Task 2"); RMI 1 0 while the feed of the last raster still waits for
+   its RMI 1 1 is 0A ("Detecting an additional raster before the command RMI_1_1 is not
+   possible", L2403: the program lost its RMI 1 1); the offset feed not directly after RMI 1 0
+   is a load-time warning of `axisline clm check` (L2375); the direction and braking rules
+   (L2397, L2405) are the physics of the plant: an offset feed shorter than the braking distance
+   reverses the axis, as the manual warns. Tests: test_rmi_outside_task_2_is_0a,
+   test_rmi_twice_without_resume_is_0a, test_rmi_short_offset_reverses.
+8. RMI's offset feed at 000 per mille (L2382 "the previous command velocity remains valid")
+   and the speed of the resumed feed (L2380 "reset to its previous value") -> both as in
+   decision 5. Test: test_rmi_fig_5_20_suspends_and_resumes_the_feed.
+9. SRP's third field x (L2649 header, always 0 in Figs. 5-29 / 5-30; its meaning is not in
+   the manual) -> the grammar takes 0 or 1 as the CLM's column does; x = 1 runs as 0 and
+   `axisline clm check` warns. Test: test_srp_x_1_is_a_warning.
 6. Status 41 (L7066-7093) -> the axis-1 position latched at the last mark of SRM, SRP or RMI,
    "A" when homed; 0 before any mark. Test: test_status_41_is_the_last_latch.
 """
@@ -360,6 +374,8 @@ def op_rmi(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     reg = rt.registration
     axis = rt.axis(ins, 0)
     if str(ins.values[1]) == "1":  # resume the main feed (L2425)
+        if task.number != 2:
+            raise ClmError("0A", f"RMI in Task {task.number}: the raster program must be in Task 2 (L2393)")
         rmi = reg.rmi
         if rmi is not None:
             if rmi.target is not None:
@@ -368,6 +384,10 @@ def op_rmi(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
             reg.suspended_task = None
         return task.pc + 1
     if task.wait is None:
+        if task.number != 2:
+            raise ClmError("0A", f"RMI in Task {task.number}: the raster program must be in Task 2 (L2393)")
+        if reg.rmi is not None:
+            raise ClmError("0A", "RMI 1 0 while the feed of the last raster waits for its RMI 1 1: no additional raster before it (L2403)")
         task.wait = reg.arm(axis, ins.values[2])  # type: ignore[arg-type]
         return None
     w = task.wait
