@@ -29,7 +29,7 @@ Decisions (spec line -> choice, why)
    test_binary_and_analog_factors, test_binary_override_on_the_plant.
 3. Analog (L3277 "F = 0 - 1 corresponds to 0V - 10V") -> F = volts / 10 clipped to 0..1 (a
    negative voltage is 0); the volts come from the personality's ``analog_inputs`` (AE1..AE4 on
-   an `AnalogIO`); B017's averaging digit is not modelled yet (the value is taken every cycle);
+   an `AnalogIO`); the volts are B017's averaged 12-bit reading the personality passes each cycle (analog.py decisions 1, 2);
    test_analog_override_on_the_plant.
 4. Errata §3.2 "VEO limit (of Vmax) is not the same as VEO factor (of the programmed velocity)"
    (L2869-2872) -> factor: v = programmed x vvv / 1000; limit: v = min(programmed, vvv / 1000 x

@@ -19,12 +19,20 @@
     "Q1.00.0" = "press_valve"
     [device.analog_inputs]             # AE1..AE4 in volts (the override potentiometer, §7.3)
     AE1 = 5.0
+    [device.decade_switch]             # an IDS01 on X6 (B002 function 1): V015-V018 (decade_switch.py)
+    model = "IDS01.1-2"
+    length = 123.45
+    velocity = 50
 
 Each NC cycle (`tick`, every machine cycle): the outputs the CLM set in the previous cycle go to
 the [io] outputs ("Hardware outputs are set at the beginning of the following cycle", L1437),
 the wired inputs are read into the CLM's image, and the runtime runs one cycle (`runtime`).
 Without wiring, the system inputs are those of a machine ready to run: Automatic selected,
-E-Stop and Immediate Stop closed, the configured axes enabled.
+E-Stop and Immediate Stop closed, the configured axes enabled. Before the runtime's step the
+devices on the CLM's own connectors are read: master encoder 1 (`master_encoder`), the IDS01
+decade switch (`decade_switch`, which reports its faults 12-15 through the mode machine's fault
+path) and the analog inputs through B017's averaging (`analog`: the override, V007-V010 and
+Status 45/49 read the same value).
 
 The retained memory (program, parameters, Logic Task, V600-V999, counters, M3, M6.00-19) is
 written to `memory_file` whenever it changes, at the end of the NC cycle that changed it, so a
@@ -45,6 +53,8 @@ from axisline.devices.base import Personality
 from axisline.kernel.atomic import unwritable_reason
 from axisline.plant.io import AnalogIO
 
+from .analog import ClmAnalogInputs
+from .decade_switch import DecadeSwitch, DecadeSwitchConfig, IdsReceiver, config_problems
 from .errors import Finding
 from .files import read_file
 from .image import ProcessImage
@@ -88,10 +98,17 @@ class ClmConfig(BaseModel):
     )
     outputs: dict[OutputName, Signal] = Field(default_factory=dict, description="CLM outputs (Q0.00.0 ... Q2.05.7) to [io] outputs")
     analog_inputs: dict[AnalogName, Annotated[float, Field(ge=-10.0, le=10.0)]] = Field(
-        default_factory=dict, description="analog inputs AE1..AE4 in volts (B017/VEO override: 0-10 V = 0-100 %); unset: 0 V"
+        default_factory=dict,
+        description="analog inputs AE1..AE4 in volts, read through the 12-bit converter and B017's averaging (analog.py) by the "
+        "B017/VEO override (0-10 V = 0-100 %), V007-V010 and Status 45/49; unset: 0 V",
     )
     master_encoder_1: Name | None = Field(
         None, description="a [[master]] of kind 'wheel' whose encoder is the CLM's master encoder 1 (X1; C000-C003, master_encoder.py); none: not connected"
+    )
+    decade_switch: DecadeSwitchConfig | None = Field(
+        None,
+        description="an IDS01 decade switch on X6, read when B002 selects it (function digit 1): V015-V018, "
+        "faults 12-15 in Automatic (decade_switch.py); none: nothing connected",
     )
     start_at: float | None = Field(None, ge=0.0, le=1e6, description="press Start this many seconds after power-on (none: only the wired input or !START)")
     report_output: OutputName | None = Field(
@@ -142,6 +159,8 @@ class ClmPersonality(Personality):
                 problems.append(f"device.master_encoder_1 = {config.master_encoder_1!r}: no [[master]] of kind 'wheel' of that name (wheels: {have})")
             else:
                 me_master = machine.masters[config.master_encoder_1]
+        if config.decade_switch is not None:
+            problems += config_problems(config.decade_switch)
         if problems:
             raise ConfigError(self.source, problems)
         from .axis import ClmAxis
@@ -161,6 +180,14 @@ class ClmPersonality(Personality):
         self.analog = AnalogIO(ANALOG_INPUTS)  # AE1..AE4 (a test or the operator may set_input them)
         for name, volts in config.analog_inputs.items():
             self.analog.set_input(name, volts)
+        # the firmware's reading of them (12 bits, B017 averaging): override, V007-V010, Status 45/49
+        self.analog_inputs = ClmAnalogInputs(self.analog)
+        self.rt.analog = self.analog_inputs  # type: ignore[attr-defined]  # (status.py reads it)
+        self._chain_system_variables()
+        cycle_us = round(cycle_s * 1e6)
+        switch = None if config.decade_switch is None else DecadeSwitch(config.decade_switch, cycle_us)
+        self.ids = IdsReceiver(self.rt, switch, cycle_us)
+        self._mode_seen: str | None = None
         self._start_cycle = None if config.start_at is None else math.ceil(config.start_at / cycle_s - 1e-9)
         self._report = None if config.report_output is None else parse_operand(config.report_output, bit=True)
         self._report_previous = 0
@@ -170,6 +197,20 @@ class ClmPersonality(Personality):
         self.store_error: str | None = None
 
     # -- construction ----------------------------------------------------------------------
+
+    def _chain_system_variables(self) -> None:
+        """V007-V010 are the analog inputs standardized to +-1 (L1361-1364, analog.py decision
+        1), live when read; every other system variable is the runtime's."""
+        variables = self.memory.variables
+        runtime_value = variables.system
+        analog = self.analog_inputs
+
+        def system_value(number: int) -> int | None:
+            if 7 <= number <= 10:
+                return analog.standardized(number - 6)
+            return None if runtime_value is None else runtime_value(number)
+
+        variables.system = system_value
 
     def _path(self, name: str | None) -> Path | None:
         if name is None:
@@ -276,11 +317,20 @@ class ClmPersonality(Personality):
             data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
         if self._start_cycle is not None:
             image.set(_START, int(cycle == self._start_cycle))
-        if self.rt.velocity.needs_analog:  # (AE1..AE4 are read only by an override)
-            self.analog.sample()
-            self.rt.velocity.analog_volts[:] = [self.analog.read(name) for name in ANALOG_INPUTS]
+        mode = self.rt.modes.mode
+        if mode != self._mode_seen:  # B017's averaging is taken on leaving Parameter mode
+            if self._mode_seen in (None, "parameter", "power-on") and mode != "parameter":
+                self.analog_inputs.configure(self.memory.parameters)
+            self._mode_seen = mode
+        analog = self.analog_inputs
+        velocity = self.rt.velocity
+        if analog.averaging:  # (else nothing per cycle unless an override reads, analog.py decision 3)
+            analog.tick()
+        if velocity.needs_analog:
+            velocity.analog_volts[:] = analog.all_volts()
         if self._master_encoder is not None:  # (nothing per cycle without master encoder 1)
             self._master_encoder.sample(cycle)
+        self.ids.tick(cycle)  # the IDS01 on X6 (a fault 12-15 stops the tasks before they run)
         self.rt.step()
         self._ever_ran = self._ever_ran or self.rt.modes.running
         if self.store is not None:
@@ -358,7 +408,16 @@ class ClmPersonality(Personality):
             "max_abs_error": max(errors) if errors else None,
             "store_error": self.store_error,
             "registration": self.rt.registration.products,
+            "decade_switch": self._ids_summary(),
         }
+
+    def _ids_summary(self) -> dict[str, Any] | None:
+        ids = self.ids
+        if ids.switch is None and not ids.enabled:
+            return None
+        return {"read": ids.enabled, "telegrams": ids.telegrams, "errors": dict(sorted(ids.errors.items())),
+                "length": None if ids.switch is None else ids.switch.length,
+                "velocity": None if ids.switch is None else ids.switch.velocity}
 
     def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
         lines = ["## CLM1.4", "", f"Mode at the end: {device_summary['mode']}."]
@@ -375,6 +434,11 @@ class ClmPersonality(Personality):
             lines += ["", "Registration (SRP) per product: mark latched, measured distance to the end position, "
                       "correction of the next feed:", "", "| product | mark | measured | correction |", "|---|---|---|---|"]
             lines += [f"| {r['product']} | {r['mark']:.3f} | {r['measured']:.3f} | {r['correction']:+.3f} |" for r in products]
+        ids = device_summary.get("decade_switch")
+        if ids:  # the IDS01 (decade_switch.py): what came over the link, what went wrong on it
+            errors = ", ".join(f"{code}: {n}" for code, n in ids["errors"].items()) or "none"
+            lines += ["", f"IDS01 decade switch on X6 ({'read' if ids['read'] else 'not read: B002 selects a data interface'}): "
+                      f"{ids['telegrams']} good telegram(s), errors {errors}."]
         return "\n".join(lines) + "\n"
 
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:

@@ -31,7 +31,8 @@ anything refused            changes nothing                              ``Xs01_
 
 The interface settings are B003 (X6), or B005 when X6 is off or serves the IDS01 and X8 is a
 data interface ("Only one serial interface at once", L6329): station number, checksum
-validation, confirmation ``Y``, automatic error messages.
+validation, confirmation ``Y``, automatic error messages. With the IDS01 on X6 and X8 off there
+is no data interface and nothing is answered (decision 14).
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -113,6 +114,15 @@ Decisions (spec line -> choice, why)
     ``test_unsaved_write_is_undone``.
 13. C-X8-RESPONSE-DELAY, L6337: the RS485 response delay of B003 is not applied (a TCP
     connection has no bus turnaround; delaying would hold the NC cycle).
+14. C-IDS-PORT, L5028 ("If the decade switch input is preselected via an IDS01 unit, the other
+    values need not be input"), L6301 and L6329 (one serial interface at once): with B002's
+    function digit 1, X6 carries the IDS01's telegrams (decade_switch.py), not this protocol.
+    The endpoint is then X8 with B005's settings when B004 makes X8 a data interface; when it
+    does not, the CLM has no data interface: the endpoint takes the bytes and answers nothing
+    (a host on a port wired to the decade switch hears nothing), and says so once per session
+    on stderr. B002 is taken outside Parameter mode like B003 (decision 4), so a host that
+    writes B002 = IDS01 keeps its session until Parameter mode is left. Test:
+    ``tests/devices/clm/test_decade_switch.py::test_serial_endpoint_with_the_ids_on_x6``.
 """
 
 from __future__ import annotations
@@ -148,12 +158,15 @@ class Settings:
     checksum: bool = True  # validation on
     confirmation: bool = False
     auto_error: bool = False
+    data_interface: bool = True  # False: X6 serves the IDS01 and X8 is off (decision 14)
 
 
 def read_settings(params: Any) -> Settings:
     port = "B003"
     x6, x8 = params.get("B002"), params.get("B004")
-    if (int(x6["baud_rate"]) == 0 or int(x6["function"]) == 1) and int(x8["baud_rate"]) != 0 and int(x8["function"]) == 0:
+    x6_ids = int(x6["function"]) == 1
+    x8_data = int(x8["baud_rate"]) != 0 and int(x8["function"]) == 0
+    if (int(x6["baud_rate"]) == 0 or x6_ids) and x8_data:
         port = "B005"
     value = params.get(port)
     station = int(value["station_number"])
@@ -162,6 +175,7 @@ def read_settings(params: Any) -> Settings:
         checksum=int(value["handshake_checksum"]) in (0, 2),
         confirmation=int(value["confirmation"]) == 1,
         auto_error=int(value["auto_error_message"]) == 1,
+        data_interface=not (x6_ids and not x8_data),
     )
 
 
@@ -500,6 +514,7 @@ class ClmSession:
         self._buffer = bytearray()
         self._overlong = False
         self._seen_fault = endpoint.rt.modes.fault_error  # decision 6: what was there is not news
+        self._told_ids = False  # decision 14: the note was printed
 
     @property
     def pending(self) -> bytes:
@@ -512,6 +527,14 @@ class ClmSession:
             settings = endpoint.settings
         except Exception:  # never raise out of feed
             settings = Settings()
+        if not settings.data_interface:  # decision 14: X6 is the IDS01's, X8 is off
+            self._buffer.clear()
+            self._overlong = False
+            if not self._told_ids:
+                self._told_ids = True
+                print("clm serial: X6 serves the IDS01 decade switch (B002) and X8 is off (B004): "
+                      "the CLM has no data interface, telegrams are not answered", file=sys.stderr, flush=True)
+            return b""
         out = bytearray(self._automatic_message(settings))
         replies: list[tuple[bytes, bool]] = []
         snapshot: _Snapshot | None = None

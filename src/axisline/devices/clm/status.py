@@ -54,9 +54,10 @@ Decisions (spec line -> choice, why)
    when the stack is empty. Status 02 is Task 1's pair. Test: ``test_status_02_08_39_tasks``.
 4. C-VELOCITY-FLAG, spec §8.5 [MISSING figure] the single digit before each velocity in 42/47/48:
    1 for an enabled axis, 0 (and ``+0000.00``) for one that is not; the velocity is the axis'
-   encoder speed in 1/min, clipped to ±9999.99. Analog inputs (45, 49) read ``+00000`` (mV,
-   10 V = +10000; no machine file wires a CLM analog input yet). Test:
-   ``test_status_42_45_48_49``.
+   encoder speed in 1/min, clipped to ±9999.99. Analog inputs (45, 49): the voltage in mV
+   (10 V = +10000) after the 12-bit conversion and B017's averaging (analog.py decisions 1, 2);
+   ``+00000`` on a runtime without the plant's inputs. Tests: ``test_status_42_45_48_49``,
+   ``tests/devices/clm/test_analog_status.py::test_status_49_and_45_in_millivolts``.
 5. C-NOT-AVAILABLE, issue 12 ("answer the CLM's 'not available' until then"): Status 47 (and 09,
    the measuring wheel's position) answer error 10 "M-Wheel Param Error" when the measuring
    wheel is not set up, as L7193 says the CLM does for 47 (C000 without a resolution; for 09:
@@ -173,9 +174,11 @@ def _velocity(rt: Any, n: int) -> str:
 
 
 def _analog(rt: Any, n: int) -> str:
-    values = getattr(rt, "analog_inputs", None)  # mV per input 1-4 when a part wires them
-    mv = _finite(values.get(n, 0.0)) if isinstance(values, dict) else 0.0
-    return f"{max(-99999, min(99999, round(mv))):+06d}"
+    """Status 45 / 49: the input's voltage in mV as the firmware reads it (12 bits, B017's
+    averaging: analog.py decisions 1, 2); +00000 without the plant's analog inputs."""
+    analog = getattr(rt, "analog", None)  # analog.ClmAnalogInputs, set by the personality
+    mv = analog.millivolts(n) if analog is not None else 0
+    return f"{max(-99999, min(99999, mv)):+06d}"
 
 
 def _task_fields(rt: Any, number: int) -> str:
