@@ -153,6 +153,8 @@ class Machine:
         self._io_followers = tuple((n, self.sensors[n]) for n in config.io.inputs if n in self.sensors)
         self.actuators = tuple((a, a.build()) for a in config.actuator)
         self._io_used = bool(self.io.inputs or self.io.outputs)
+        if self._io_used:  # the first cycle sees the inputs' power-on levels, not an empty image
+            self.io.sample()
         if self.material is not None or self.sensors or config.io.inputs or config.io.outputs:
             self.scheduler.add_task("plant", self._plant_step, Stage.ACTUATE)
         self._axes = tuple((n, u.axis) for n, u in self.units.items())

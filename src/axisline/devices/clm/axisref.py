@@ -162,6 +162,11 @@ class AxisReferences:
         self.loop.resync()
 
     @property
+    def frame_shift(self) -> Fraction:
+        """SAC's shift against the initial frame (decision 23); restart keeps targets in the initial frame."""
+        return self._sac_shift
+
+    @property
     def homing(self) -> bool:
         """A homing (HOM or the Homing input) is running."""
         return self._homing_proc is not None

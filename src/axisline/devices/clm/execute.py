@@ -3,9 +3,11 @@
 One function per mnemonic, ``handler(rt, task, ins) -> next instruction | None (wait)``,
 collected in `HANDLERS`. Field values are read through the runtime (`rt.value`), which fits a
 variable to its field (fault 32) and checks an axis (16, 4E). The commands of the axis
-functions (part 3: FUN, RSV) and of
+functions (part 3: FUN) and of
 the flying cutoff (part 4: LML, LMK, LMR, EOS, MLO, MLT) are not in this version: reaching one
-stops the program with fault 0A and says so. VCC, VEO and AEO are here, their state and
+stops the program with fault 0A and says so. RSV is `restart.op_rsv` (the restart program,
+restart.py); ACC and FAK note the program's values there for the restart image, and RMI notes
+where Task 2's raster cycle began (restart decisions 1, 9). VCC, VEO and AEO are here, their state and
 decisions in `override` (rt.velocity); SRM, REP, SRP and RMI in `registration`
 (rt.registration), which also takes part in PSI/POI of axis 1 while SRP or RMI is active.
 
@@ -41,6 +43,7 @@ from .fields import VARIABLE_MAX, VARIABLE_SCALE, Var
 from .operands import Operand
 from .program import Instruction
 from .registration import op_rep, op_rmi, op_srm, op_srp
+from .restart import op_rsv
 
 if TYPE_CHECKING:
     from .nc import Handler, NcTask
@@ -50,7 +53,7 @@ __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
 LATER = {
-    **dict.fromkeys(("FUN", "RSV"), "part 3 (axis functions)"),
+    **dict.fromkeys(("FUN",), "part 3 (axis functions)"),
     **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
 }
 
@@ -389,7 +392,10 @@ def op_txt(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 
 
 def op_acc(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
-    rt.axis(ins, 0).set_acceleration(rt.number(ins, 1), rt.number(ins, 2))
+    axis = rt.axis(ins, 0)
+    values = (rt.number(ins, 1), rt.number(ins, 2))
+    axis.set_acceleration(*values)
+    rt.restart.note(axis.number, "acc", values)  # part of the restart image
     return _next(task)
 
 
@@ -398,7 +404,9 @@ def op_fak(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     if number == 5:
         rt.master_factor = rt.number(ins, 1)  # master encoder 1's feed constant (part 3/4 use it)
     else:
-        rt.axis(ins, 0).set_factor(rt.number(ins, 1))
+        axis = rt.axis(ins, 0)
+        axis.set_factor(rt.number(ins, 1))
+        rt.restart.note(axis.number, "fak", rt.number(ins, 1))  # part of the restart image
     return _next(task)
 
 
@@ -497,6 +505,14 @@ def op_fol(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     return _next(task)
 
 
+def op_rmi_noted(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """RMI (registration.py); RMI 1 0 reached anew is where a restart sends Task 2 back to
+    (restart decision 9)."""
+    if task.wait is None and str(ins.values[1]) == "0":
+        rt.restart.note_rmi(task)
+    return op_rmi(rt, task, ins)
+
+
 def _later(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     raise ClmError("0A", f"{ins.mnemonic} is not available in this version of axisline (it comes with {LATER[ins.mnemonic]})")
 
@@ -511,6 +527,6 @@ HANDLERS: dict[str, Handler] = {
     "POA": _position(True, False), "POI": _position(False, False),
     "PSA": _position(True, True), "PSI": _position(False, True),
     "HOM": op_hom, "FOL": op_fol, "RTM": op_rtm, "SAC": op_sac,
-    "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi,
+    "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi_noted, "RSV": op_rsv,
     **dict.fromkeys(LATER, _later),
 }

@@ -16,7 +16,10 @@ Retained memory (§1.3, spec §1.3: "program instructions, parameters, Logic Tas
 V600-V999, counters, M3, M6.00-19" are battery-buffered): `RetainedStore` keeps them in one
 file, written atomically whenever one of them changed (at most once per NC cycle, at the
 cycle's end), so a kill -9 at any moment leaves the last state the CLM had acknowledged or
-executed, as the CLM's buffered RAM does through a power cut.
+executed, as the CLM's buffered RAM does through a power cut. The restart image of a running
+program (`restart`, §7.11) is part of it (`ClmMemory.restart`, a JSON table kept by the runtime,
+`restart_version` counting its changes): it changes only when the program changes state at an
+instruction boundary or starts / stops (restart decision 10), not every cycle.
 """
 
 from __future__ import annotations
@@ -114,6 +117,9 @@ class ClmMemory:
         self.variables = Variables()
         self.image = ProcessImage()
         self.version = 0  # bumped by every change of the program, parameters or Logic Task
+        #: the restart image as the memory file keeps it (restart.RestartImage.to_json), or None
+        self.restart: dict[str, object] | None = None
+        self.restart_version = 0
 
     # -- clear rules ---------------------------------------------------------------------
 
@@ -155,7 +161,7 @@ class ClmMemory:
     def retained_key(self) -> tuple[object, ...]:
         """Cheap to compute every cycle; changes whenever `retained()` would."""
         data = self.image.data
-        return (self.version, self.variables.version, tuple(self.program.counters.items()), *(bytes(data[s]) for _, s in _RETAINED))
+        return (self.version, self.variables.version, self.restart_version, tuple(self.program.counters.items()), *(bytes(data[s]) for _, s in _RETAINED))
 
     def retained(self) -> dict[str, object]:
         return {
@@ -165,6 +171,7 @@ class ClmMemory:
             "logic": logic_listing(self.logic),
             "variables": {f"V{n:03d}": format_variable(v) for n, v in self.variables.user().items()},
             "markers": {name: bytes(self.image.data[s]).hex() for name, s in _RETAINED},
+            **({} if self.restart is None else {"restart": self.restart}),
         }
 
     def restore(self, state: dict[str, object], source: str) -> None:
@@ -191,6 +198,14 @@ class ClmMemory:
             if program[n].mnemonic not in ("COU", "BAC") or not isinstance(count, int) or count < 0:
                 raise ValueError(f"{source}: counter {key} = {count!r} does not belong to a COU/BAC")
             program.counters[n] = count
+        restart = state.get("restart")
+        if restart is not None:
+            from .restart import RestartImage  # (restart imports nothing of the memory)
+
+            try:
+                RestartImage.from_json(restart)
+            except ValueError as e:
+                raise ValueError(f"{source}: {e}") from None
         image = ProcessImage()
         for name, span in _RETAINED:
             data = bytes.fromhex(str(markers.get(name, "")))
@@ -200,6 +215,8 @@ class ClmMemory:
                 image.data[span] = data
         self.program, self.parameters, self.logic = program, params, logic
         self.variables = values
+        self.restart = restart  # type: ignore[assignment]
+        self.restart_version += 1
         self.image.data[:] = image.data  # in place: the axes, the Logic Task and the modes hold the image
         self.version += 1
 

@@ -12,13 +12,15 @@ Start                  I0.00.3   rising edge in Automatic starts / continues the
 Immediate Stop (low)   I0.00.4   0 = tasks 1, 2, 4, 5 stop, axes decelerate keeping the rest
 Enable Axis 1-4        I0.00.5, I0.00.6, I0.02.0, I0.02.3  the drive's "motor ready"
 External Clear         I0.00.7   rising edge clears a fault
+Re-Start               I0.01.6   rising edge in Automatic: restart (`restart`), else as Start
 Jog + / - axis 1-4     I0.01.0-3, I0.02.1-2, I0.02.4-5 (Manual)
 =====================  ========  =========================================================
 
 Outputs: Q0.00.0 Manual, Q0.00.1 Automatic, Q0.00.2 Parameter, Q0.00.5 Error message (active
-low: 1 = no fault), Q0.01.1 Run Task, Q0.01.5 Inhibit Operation; Q0.00 and Q0.01 are mirrored
-into the status word Q2.00 / Q2.01 (errata §1.19: Q2.00.5 is the mirror of the active-low
-error output). Drive enable and brake outputs belong to the axes (`axis`).
+low: 1 = no fault), Q0.01.0 Restart possible (`restart`), Q0.01.1 Run Task, Q0.01.5 Inhibit
+Operation; Q0.00 and Q0.01 are mirrored into the status word Q2.00 / Q2.01 (errata §1.19:
+Q2.00.5 is the mirror of the active-low error output; Q2.01.0 is reserved and stays 0). Drive
+enable and brake outputs belong to the axes (`axis`).
 
 Mode changes (spec §2.2): into Parameter mode every task and the Logic Task stop and the outputs
 and non-retained markers are cleared; out of it the parameters are checked (fault 02 with the
@@ -28,7 +30,10 @@ at 0000 and at the B011/B012 starts. After Immediate Stop, JST or ``!STOP`` the 
 continues where the tasks stopped, the axes first finishing their remaining distance; a stop by
 ``!STOP`` is continued only by ``!START`` (L7325). A fault stops tasks 1, 2, 4, 5 (Task 3 and
 the Logic Task go on), switches the drives off, clears M2 and the outputs as B018 says; after
-it is cleared the program starts again from 0000.
+it is cleared the program starts again from 0000. The exception is Restart (`restart`): a
+fault, a switch to Manual or a power loss while the program runs keeps an image of it that
+the Re-Start input (I0.01.6, fieldbus I2.01.6) restores; `restart.Restart.interrupted` is
+called before anything is stopped or cleared.
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -60,9 +65,11 @@ def _i(text: str) -> Operand:
 
 
 PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR = (_i(t) for t in ("I0.00.0", "I0.00.1", "I0.00.2", "I0.00.3", "I0.00.4", "I0.00.7"))
+RESTART, RESTART_FIELDBUS = _i("I0.01.6"), _i("I2.01.6")  # X3/15 and the control word's bit 14 (L5920, L7619)
 ENABLE = {1: _i("I0.00.5"), 2: _i("I0.00.6"), 3: _i("I0.02.0"), 4: _i("I0.02.3")}
 JOG = {1: (_i("I0.01.0"), _i("I0.01.1")), 2: (_i("I0.01.2"), _i("I0.01.3")), 3: (_i("I0.02.1"), _i("I0.02.2")), 4: (_i("I0.02.4"), _i("I0.02.5"))}
 Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_INHIBIT = (_i(t) for t in ("Q0.00.0", "Q0.00.1", "Q0.00.2", "Q0.00.5", "Q0.01.1", "Q0.01.5"))
+Q_RESTART = _i("Q0.01.0")  # X4/9 Restart possible; no status-word bit (Q2.01.0 is reserved, L6068)
 _Q0 = (Operand("Q", 0, 0), Operand("Q", 0, 1))
 _STATUS_WORD = (Operand("Q", 2, 0), Operand("Q", 2, 1))
 
@@ -80,7 +87,8 @@ class ModeMachine:
         self._previous: dict[Operand, int] = {}
         self._data = rt.image.data  # the image's bytes (never replaced, written in place)
         self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, *ENABLE.values())}
-        self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK)]
+        self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_RESTART)]
+        self._reserved_q2 = ProcessImage.locate(Operand("Q", 2, 1, 0))
         self.enabled_axes: frozenset[int] = frozenset()  # B000's axes, less those !MxOFF switched off
         self._parameter_axes: frozenset[int] = frozenset()
         self.interface_off: set[int] = set()
@@ -128,6 +136,8 @@ class ModeMachine:
         wanted = self._wanted()
         clear = self._rising(CLEAR)
         start = self._rising(START)
+        restart = self._rising(RESTART)
+        restart = self._rising(RESTART_FIELDBUS) or restart  # restart.py decision 13
         if self.mode == "power-on":
             self._power_on()
         if wanted == "invalid":
@@ -144,17 +154,21 @@ class ModeMachine:
         if clear and self.fault_error is not None:
             self.clear()
         if self.mode == "automatic" and self.fault_error is None:
-            self._automatic(start)
+            self._automatic(start, restart)
         elif self.mode == "manual":
             self._manual()
 
     def _power_on(self) -> None:
         self.mode = "manual"
         self._leave_parameter_mode()
+        if self.fault_error is None:
+            self.rt.restart.power_on()
 
     def _change(self, wanted: str) -> None:
         old, self.mode = self.mode, wanted
         rt = self.rt
+        if old == "automatic" or wanted == "parameter":  # first: the program's state as it is
+            rt.restart.interrupted("parameter" if wanted == "parameter" else "manual")
         if old == "automatic":
             self._stop_program()
             rt.memory.leave_automatic()
@@ -245,7 +259,7 @@ class ModeMachine:
 
     # -- Automatic -------------------------------------------------------------------------------
 
-    def _automatic(self, start: bool) -> None:
+    def _automatic(self, start: bool, restart: bool = False) -> None:
         for n in sorted(self.enabled_axes):  # "at all times" for the activated axes (§9.1)
             if not self.axis_enable_input(n):
                 self.fault(ClmError(axis_fault(0x00, n), f"Enable Axis {n} lost in Automatic"))
@@ -255,6 +269,8 @@ class ModeMachine:
             self.immediate_stop()
         elif start and run_allowed and not self.interface_stopped:
             self.start()
+        elif restart and run_allowed:
+            self.rt.restart.edge()  # a restart, or a Start when none is possible (L3831)
         self._interrupt_inputs()
         self._interrupt_vector()
 
@@ -269,6 +285,7 @@ class ModeMachine:
         self.interface_stopped = False
         params = rt.memory.parameters
         if self.restart_from_zero:
+            rt.restart.started()  # a new run: a waiting restart image is given up
             rt.tasks[0].start(0)
             starts = {2: params.get("B011")["task_2_start"], 4: params.get("B012")["task_4_start"], 5: params.get("B012")["task_5_start"]}
             for n, at in starts.items():
@@ -281,6 +298,14 @@ class ModeMachine:
                     task.running = True
             for axis in rt.axes.values():
                 axis.resume()
+        self._stopped_tasks = set()
+        self.running = True
+
+    def begin_restart(self) -> None:
+        """The Re-Start edge restores (or runs the restart program): Run Task is set, the
+        program goes on instead of beginning at 0000."""
+        self.interface_stopped = False
+        self.restart_from_zero = False
         self._stopped_tasks = set()
         self.running = True
 
@@ -363,6 +388,7 @@ class ModeMachine:
         if self.fault_error is not None:
             return  # decision 2: the first fault stays
         rt = self.rt
+        rt.restart.interrupted("fault", error)  # first: the image of the running program
         self.fault_error = error
         for task in rt.tasks:
             if task.number != 3:
@@ -412,7 +438,8 @@ class ModeMachine:
         image = self.rt.image
         data = image.data
         mode, ok = self.mode, self.fault_error is None
-        for (at, shift, _), on in zip(self._output_places, (mode == "manual", mode == "automatic", mode == "parameter", ok, self.running)):
+        flags = (mode == "manual", mode == "automatic", mode == "parameter", ok, self.running, self.rt.restart.possible)
+        for (at, shift, _), on in zip(self._output_places, flags):
             data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
         selector = self._b018[0]
         if 1 <= selector <= 6 and self.fault_error is not None:
@@ -420,4 +447,6 @@ class ModeMachine:
             image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)
         for source, mirror in zip(_Q0, _STATUS_WORD):
             image.set(mirror, image.get(source))
+        at, shift, _ = self._reserved_q2  # Restart possible has no status-word bit
+        data[at] &= ~(1 << shift)
 

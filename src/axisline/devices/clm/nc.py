@@ -6,7 +6,9 @@ while a waiting command holds it (AKN, AKP, WAI, PSA, PSI, ...), that command's 
 instruction takes one NC cycle, NOP and jumps included; a waiting command is evaluated again
 each cycle until its condition holds, then the task goes on in the next cycle ("the process
 time is always extended by the cycle time required for the outcome to arrive"). Up to four
-consecutive TXT run in one cycle (L2756).
+consecutive TXT run in one cycle (L2756). A completed instruction of tasks 1, 2, 4, 5 that
+changes state (not in `restart.PURE`) bumps the restart generation, so that the battery-buffered
+restart image is written only then (restart decision 10).
 
 The command semantics are `execute.HANDLERS`, one function per mnemonic; this module only runs
 them. A handler returns the next instruction number, or None to stay on its instruction.
@@ -33,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 
 from .errors import ClmError
 from .program import PROGRAM_SIZE, Instruction
+from .restart import PURE
 
 if TYPE_CHECKING:
     from .runtime import ClmRuntime
@@ -94,6 +97,8 @@ class NcTask:
                 return
             self.wait = None
             self.cycles_on_instruction = 0
+            if self.number != 3 and ins.mnemonic not in PURE:  # state changed: the restart image follows
+                rt.restart.generation += 1
             if not self.running:  # JST / a stop inside the handler: the counter is set, the task rests
                 self.pc = nxt
                 return

@@ -182,8 +182,7 @@ class ClmPersonality(Personality):
             self.analog.set_input(name, volts)
         # the firmware's reading of them (12 bits, B017 averaging): override, V007-V010, Status 45/49
         self.analog_inputs = ClmAnalogInputs(self.analog)
-        self.rt.analog = self.analog_inputs  # type: ignore[attr-defined]  # (status.py reads it)
-        self._chain_system_variables()
+        self.rt.analog = self.analog_inputs  # (status.py and the runtime's V007-V010 read it)
         cycle_us = round(cycle_s * 1e6)
         switch = None if config.decade_switch is None else DecadeSwitch(config.decade_switch, cycle_us)
         self.ids = IdsReceiver(self.rt, switch, cycle_us)
@@ -197,20 +196,6 @@ class ClmPersonality(Personality):
         self.store_error: str | None = None
 
     # -- construction ----------------------------------------------------------------------
-
-    def _chain_system_variables(self) -> None:
-        """V007-V010 are the analog inputs standardized to +-1 (L1361-1364, analog.py decision
-        1), live when read; every other system variable is the runtime's."""
-        variables = self.memory.variables
-        runtime_value = variables.system
-        analog = self.analog_inputs
-
-        def system_value(number: int) -> int | None:
-            if 7 <= number <= 10:
-                return analog.standardized(number - 6)
-            return None if runtime_value is None else runtime_value(number)
-
-        variables.system = system_value
 
     def _path(self, name: str | None) -> Path | None:
         if name is None:

@@ -11,7 +11,8 @@ without a plant.
 Per NC cycle (spec §1.4, §2, §3.9): the system variables are brought up to date; the mode inputs,
 E-Stop, Start, Immediate Stop and External Clear are evaluated; the Logic Task's scan advances;
 tasks 1..5 run one instruction each (Task 3 in Manual and Automatic, tasks 1, 2, 4, 5 in
-Automatic after Start; the manual vector in Manual in the Task 1 slot); the axes are monitored.
+Automatic after Start; the manual vector in Manual in the Task 1 slot); the axes are monitored;
+the restart image of a running program is kept current (`restart`).
 The rules of each mode change, stop and fault (what stops, what is cleared, where a task goes
 on) are in `modes`.
 
@@ -25,7 +26,9 @@ Decisions (spec line -> choice, why)
 2. C-SYSVAR, §5.6 Fig. 5-1/5-2: V000 counts every NC cycle, V001 the cycles while the program
    runs in Automatic, V002-V006 hold the tasks' instruction numbers, Vx00/Vx03/Vx04/Vx10 the
    axes' actual position, lag, actual velocity and remaining distance; each is the live value
-   when it is read (the axes' values are those sampled at the cycle's start). Test:
+   when it is read (the axes' values are those sampled at the cycle's start); V007-V010 are the
+   analog inputs (analog.py), V011 master encoder 1 (master_encoder.py), V015-V018 the IDS01
+   decade switch (decade_switch.py, stored when a telegram arrives). Test:
    ``test_system_variables``.
 """
 
@@ -46,6 +49,7 @@ from .override import VelocityFunctions
 from .operands import Operand, exists
 from .program import Instruction
 from .registration import Registration
+from .restart import Restart
 
 __all__ = ["ClmRuntime"]
 
@@ -62,6 +66,7 @@ class ClmRuntime:
         self.tasks = [NcTask(n) for n in range(1, 6)]
         self.master_factor = _SCALE  # FAK 5: master encoder 1's feed constant factor
         self.master_encoder: Any = None  # master_encoder.MasterEncoder1 when wired on the plant
+        self.analog: Any = None  # analog.ClmAnalogInputs, set by the personality (V007-V010, Status 45/49)
         self.message = ""  # Status 53 text (TXT mode 1)
         self.text_lines = [""] * 4  # Status 63 (TXT mode 0)
         self._txt_run: tuple[int, int] = (-1, 0)  # (cycle, next line) of the TXT run in progress
@@ -76,6 +81,7 @@ class ClmRuntime:
         memory.variables.system = self.system_value
         self.velocity = VelocityFunctions(self)  # B017/VEO override, VCC, AEO (override.py)
         self.registration = Registration(self)  # SRM/REP/SRP/RMI, raster latch (registration.py)
+        self.restart = Restart(self)  # the restart image, B016, RSV, Re-Start (restart.py)
 
     # -- the cycle -------------------------------------------------------------------------
 
@@ -95,6 +101,7 @@ class ClmRuntime:
             for task in self.tasks:
                 if task.number != suspended and self.modes.task_may_run(task):
                     task.step(self, HANDLERS)
+            self.restart.after_tasks()  # an RSV that ends the restart program restores now
             for axis in self.axes.values():
                 err = axis.tick(self.modes.mode, self.modes.axis_enable_input(axis.number), self.modes.estop_ok)
                 if err is not None:
@@ -102,6 +109,7 @@ class ClmRuntime:
         except ClmError as e:
             self.modes.fault(e)
         self.modes.outputs()
+        self.restart.tick()  # the battery-buffered image of the running program (restart decision 10)
         self.cycle += 1
 
     def clear_time_counter(self) -> None:
@@ -262,6 +270,8 @@ class ClmRuntime:
             return self.tasks[number - 2].pc * _SCALE
         if number == 19:
             return int((self.cycle - self._time_origin) * self.nc_cycle_s / 3600) * _SCALE
+        if 7 <= number <= 10:  # V007-V010: the analog inputs standardized to +-1 (analog.py decision 1)
+            return None if self.analog is None else self.analog.standardized(number - 6)
         if number == 11:  # V011: master encoder 1's velocity, IU/s (master_encoder.py decision 4)
             me = self.master_encoder
             return None if me is None else round(me.velocity * _SCALE)
