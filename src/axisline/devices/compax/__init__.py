@@ -1,4 +1,4 @@
-"""Parker COMPAX XX70 cam controller personality (spec: /work/shared/spec/compax.md).
+"""Parker COMPAX XX70 cam controller personality (spec: the project's COMPAX functional specification, docs/compax.md).
 
 Modules (import them directly; this package file only holds the shared error type so that
 every module, and the cam operation in ``camop``, raise the same thing):

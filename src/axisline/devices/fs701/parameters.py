@@ -1,7 +1,7 @@
 """FS701 parameters: every register of every parameter block as data, and `ParameterSet`.
 
 Source: manual "FS 701.09" §4.2, §4.3.1 .. §4.3.7 and the register list of §11; spec
-/work/shared/spec/fs701.md §3.3 .. §3.10, §2.1, §4, §7.
+the FS701 functional specification (fs701.md) §3.3 .. §3.10, §2.1, §4, §7.
 
 Each `Parameter` carries the manual's name, a snake_case attribute name (the snake_case of the
 §11 table name; see `snake_case`), its block, the serial register code, the range and the
