@@ -374,3 +374,22 @@ def test_mutated_examples_exit_0_1_or_2_and_never_crash(fuzz_dir, case):
         res = runner.invoke(app, ["run", str(f), "--duration", "0.05", "--quiet"])
         assert res.exception is None or isinstance(res.exception, SystemExit), (res.output, res.exception)
         assert res.exit_code in (0, 1), res.output
+
+
+# -- a misspelt key: the key meant is suggested (issue 16) -----------------------------------
+
+
+def test_a_misspelt_device_key_suggests_the_key_meant(ex):
+    f = _edit(ex, "flying_shear.toml", "ramp_tolerance = 2.0", "ramp_tolerence = 2.0")
+    _check_and_run_refuse(f, "device.ramp_tolerence: unknown key; did you mean ramp_tolerance?")
+
+
+def test_a_misspelt_trace_key_suggests_the_key_meant(ex):
+    f = _edit(ex, "positioning.toml", "capacity = 30000", "Capacity = 30000")
+    _check_and_run_refuse(f, "trace.Capacity: unknown key; did you mean capacity?")
+
+
+def test_an_unknown_key_far_from_every_key_gets_no_guess(ex):
+    f = _edit(ex, "positioning.toml", "capacity = 30000", "capacity = 30000\nzzzzzz = 1")
+    flat = _refused(["check", str(f)], "trace.zzzzzz: unknown key (known keys here: enabled, capacity")
+    assert "did you mean" not in flat

@@ -2,6 +2,12 @@
 
 Exit codes: 0 the run completed; 1 a runtime fault (an axis went to ERROR_STOP, a job
 step failed); 2 a bad machine file (the message names the key, value and range).
+
+Help is plain text (`rich_markup_mode=None` on every Typer, see `_typer`): help texts name
+TOML tables such as `[[cam]]` and `[device]`, which rich markup would swallow, and typer's
+rich panels show a flag as `--quiet <bool>`. `-h` is `--help` everywhere; `--version` prints
+the installed version. `run --json -` writes the summary JSON to standard output, and then
+nothing else goes there (the table goes to standard error).
 """
 
 from __future__ import annotations
@@ -15,20 +21,50 @@ from typing import Annotated, Optional
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .configerrors import ConfigError
 
-app = typer.Typer(add_completion=False, no_args_is_help=True, help="axisline: an open-source motion controller.")
+def _typer(help: str) -> typer.Typer:
+    """A command group with plain-text help (module docstring) and -h as well as --help (the
+    sub-commands inherit help_option_names from the group's context)."""
+    return typer.Typer(add_completion=False, no_args_is_help=True, rich_markup_mode=None,
+                       context_settings={"help_option_names": ["-h", "--help"]}, help=help)
+
+
+app = _typer("axisline: an open-source motion controller.")
 console = Console(stderr=True)
 out = Console()
 
 
+def _version(value: bool) -> None:
+    if not value:
+        return
+    from importlib.metadata import PackageNotFoundError, version
+
+    from . import __version__
+
+    try:
+        v = version("axisline")
+    except PackageNotFoundError:  # run from a source tree that was never installed
+        v = __version__
+    print(f"axisline {v}")
+    raise typer.Exit(0)
+
+
+@app.callback()
+def _main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="print the version and exit"),
+) -> None:
+    """axisline: an open-source motion controller."""
+
+
 def _bad_file(e: ConfigError) -> typer.Exit:
-    console.print(f"[red]bad machine file[/red] {e.source}:")
+    console.print(f"[red]bad machine file[/red] {escape(e.source)}:", highlight=False)
     for p in e.problems:
-        console.print(f"  - {p}", markup=False)
+        console.print(f"  - {p}", markup=False, highlight=False, soft_wrap=True)  # a line each, for grep
     return typer.Exit(2)
 
 
@@ -47,7 +83,6 @@ def _machine_value(value, option: str, key: str):
     if value is None:
         return None
     from pydantic import TypeAdapter, ValidationError
-    from rich.markup import escape
 
     from .config import MachineSection
     from .configerrors import allowed_range, shown
@@ -63,8 +98,6 @@ def _machine_value(value, option: str, key: str):
 
 def _writable(outputs: dict[str, Path | None]) -> None:
     """Exit 2 for an output that cannot be written, before the run (not after it, with a traceback)."""
-    from rich.markup import escape
-
     from .kernel.atomic import unwritable_reason
 
     for option, path in outputs.items():
@@ -86,7 +119,7 @@ def _endpoint(value: str | None, option: str) -> tuple[str, int] | None:
         if not 0 <= p <= 65535:
             raise ValueError
     except ValueError:
-        console.print(f"[red]{option}[/red] = {value!r}: expected HOST:PORT with a port in 0..65535")
+        console.print(f"[red]{option}[/red] = {escape(repr(value))}: expected HOST:PORT with a port in 0..65535")
         raise typer.Exit(2) from None
     return (host or "127.0.0.1", p)
 
@@ -96,7 +129,7 @@ def run(
     machine: Path = typer.Argument(..., help="machine file (TOML)"),
     duration: Optional[float] = typer.Option(None, "--duration", help="longest simulated time, s (default: the file's)"),
     seed: Optional[int] = typer.Option(None, "--seed", help="seed of the simulated plant (default: the file's)"),
-    json_out: Optional[Path] = typer.Option(None, "--json", help="write the run summary as JSON"),
+    json_out: Optional[Path] = typer.Option(None, "--json", help="write the run summary as JSON (- for standard output: then the table goes to standard error)"),
     trace_out: Optional[Path] = typer.Option(None, "--trace", help="write the scope trace (.npz; .csv beside it)"),
     plot_dir: Optional[Path] = typer.Option(None, "--plot", help="write plots (PNG) into this folder"),
     report_dir: Optional[Path] = typer.Option(None, "--report", help="write report.md, summary.json, the trace and plots into this folder"),
@@ -105,6 +138,9 @@ def run(
     """Run the machine on the embedded simulated plant (as fast as possible, exact time)."""
     duration = _machine_value(duration, "--duration", "duration")
     seed = _machine_value(seed, "--seed", "seed")
+    json_stdout = json_out is not None and str(json_out) == "-"
+    if json_stdout:  # the report folder still gets its summary.json
+        json_out = None
     _writable({"--json": json_out, "--trace": trace_out, "--plot": plot_dir and plot_dir / "axis.png",
                "--report": report_dir and report_dir / "report.md"})
     m = _load(machine, seed=seed, duration=duration)
@@ -148,7 +184,13 @@ def run(
 
         json_out.parent.mkdir(parents=True, exist_ok=True)
         atomic_write_text(json_out, json.dumps(summary, indent=2) + "\n")
-    _print_summary(summary)
+    from .report.console import print_summary
+
+    print_summary(summary, len(m.config.job.steps), m.config.machine.personality if m.device is not None else None,
+                  console if json_stdout else out)
+    if json_stdout:
+        sys.stdout.write(json.dumps(summary, indent=2) + "\n")
+        sys.stdout.flush()
     raise typer.Exit(0 if result.completed else 1)
 
 
@@ -162,49 +204,39 @@ def _insert_device_section(path: Path, section: str) -> None:
     atomic_write_text(path, text)
 
 
-def _print_summary(s: dict) -> None:
-    t = Table(title=f"{s['machine']}: {s['simulated_s']:.3f} s simulated in {s['wall_s']:.2f} s ({s['realtime_factor']:.0f}x real time)")
-    for col in ("axis", "state", "position", "max following error", "max speed"):
-        t.add_column(col)
-    for name, a in s["axes"].items():
-        t.add_row(name, a["state"], f"{a['position']:.4f} {a['unit']}", f"{a['max_following_error']:.4g} {a['unit']}", f"{a['max_speed']:.4g} {a['unit']}/s")
-    out.print(t)
-    job = s["job"]
-    out.print(f"job: {'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s), {len(job['events'])} command(s)")
-    device = s.get("device") or {}
-    if device.get("headline"):  # a personality's one-line result (e.g. the FS701's batch)
-        out.print(device["headline"], markup=False)
-    for f in s["faults"]:
-        out.print(f"[red]fault[/red] {f}", markup=True)
-    out.print("[green]completed[/green]" if s["completed"] else "[red]not completed[/red]")
-
-
 @app.command()
 def check(machine: Path = typer.Argument(..., help="machine file (TOML)")) -> None:
     """Validate a machine file: exit 0 if it is usable, 2 with the bad keys named."""
     m = _load(machine)
-    out.print(f"{machine}: OK ({len(m.units)} axes, cycle {m.clock.period_us} us, job of {len(m.config.job.steps)} steps)")
+    out.print(f"{escape(str(machine))}: OK ({len(m.units)} axes, cycle {m.clock.period_us} us, job of {len(m.config.job.steps)} steps)")
 
 
 @app.command()
 def plot(
-    trace: Path = typer.Argument(..., help="trace file written by run --trace (.npz)"),
+    trace: Path = typer.Argument(..., help="trace written by run --trace FILE: FILE (npz) or the FILE.csv beside it; or a run --report folder"),
     out_dir: Optional[Path] = typer.Option(None, "--out", help="folder for the PNGs (default: beside the trace)"),
 ) -> None:
     """Draw position, velocity, acceleration, jerk and following error of each axis (PNG)."""
-    from .kernel import Trace
     from .report.plots import plot_trace
+    from .report.tracefile import load_trace
 
+    if trace.is_dir() and (trace / "trace.npz").is_file():  # the folder of run --report
+        trace = trace / "trace.npz"
     try:
-        rec = Trace.load_npz(trace)
-    except (OSError, ValueError, KeyError) as e:
-        console.print(f"[red]cannot read trace[/red] {trace}: {e}")
+        rec = load_trace(trace)
+    except (OSError, ValueError) as e:
+        reason = e.strerror if isinstance(e, OSError) and e.strerror else str(e)
+        if trace.is_dir():
+            from .report.tracefile import ACCEPTED
+
+            reason = f"a folder without a trace.npz; expected {ACCEPTED}, or the folder of run --report"
+        console.print(f"[red]cannot read trace[/red] {escape(str(trace))}: {escape(reason)}", highlight=False)
         raise typer.Exit(2) from None
     files = plot_trace(rec.data(), rec.units, out_dir or trace.with_suffix(""), title=trace.stem)
     for f in files:
-        out.print(str(f))
+        out.print(str(f), markup=False, highlight=False)
     if not files:
-        console.print("no axis channels in this trace")
+        console.print("no axis channels in this trace (an axis is drawn from its <axis>.command_position channel)")
         raise typer.Exit(1)
 
 
@@ -221,12 +253,12 @@ def cam(
 
     m = _load(machine)
     if name not in m.cams:
-        console.print(f"[red]no cam {name!r}[/red] (cams: {', '.join(m.cams) or 'none'})")
+        console.print(f"[red]no cam {escape(repr(name))}[/red] (cams: {', '.join(m.cams) or 'none'})")
         raise typer.Exit(2)
     limits = {}
     if axis is not None:
         if axis not in m.units:
-            console.print(f"[red]no axis {axis!r}[/red] (axes: {', '.join(m.units)})")
+            console.print(f"[red]no axis {escape(repr(axis))}[/red] (axes: {', '.join(m.units)})")
             raise typer.Exit(2)
         c = m.units[axis].axis.config
         limits = {"v_max": c.v_max, "a_max": c.a_max, "j_max": c.j_max}
@@ -245,11 +277,11 @@ def cam(
     out.print(f"largest master speed within the limits: {r.max_master_speed:.6g}/s")
     if plot_file is not None:
         plot_cam(curve, master_speed, plot_file, title=f"cam {name}")
-        out.print(str(plot_file))
+        out.print(str(plot_file), markup=False, highlight=False)
     raise typer.Exit(0 if r.within_limits else 1)
 
 
-fs701_app = typer.Typer(no_args_is_help=True, help="motrona FS701 flying shear tools.")
+fs701_app = _typer("motrona FS701 flying shear tools.")
 app.add_typer(fs701_app, name="fs701")
 
 
@@ -266,30 +298,63 @@ def fs701_envelope(
     raise typer.Exit(envelope_command(params, png, cut_time, speeds))
 
 
-compax_app = typer.Typer(help="COMPAX XX70 tools.", no_args_is_help=True)
+compax_app = _typer("COMPAX XX70 tools.")
 app.add_typer(compax_app, name="compax")
 
 
 @compax_app.command("plot")
 def compax_plot(
-    curves: Path = typer.Argument(..., help="saved cam memory (.json) or a master,slave CSV"),
-    curve: int = typer.Argument(..., help="curve number"),
+    curves: Path = typer.Argument(..., help="saved cam memory (.json) or a master,slave CSV (not the machine file)"),
+    curve: int = typer.Argument(..., help="curve number 1 ... 100 (SETC n); a CSV holds one curve, drawn as this number"),
     master_speed: float = typer.Option(..., "--master-speed", help="master speed, master units/s"),
     out_file: Path = typer.Option(..., "--out", help="PNG to write"),
     p36: float = typer.Option(1.0, "--p36", help="slave factor P36"),
 ) -> None:
     """Draw a COMPAX curve with the slave's velocity and acceleration at a master speed."""
     from .devices.compax import CompaxError
+    from .devices.compax.cammemory import MAX_CURVES
     from .devices.compax.report import plot_curve
 
+    def refuse(why: str) -> typer.Exit:
+        console.print(f"[red]cannot plot curve {curve}[/red] of {escape(str(curves))}: {escape(why)}", highlight=False)
+        return typer.Exit(2)
+
+    if not 1 <= curve <= MAX_CURVES:  # a CSV takes any number; the COMPAX stores curves 1 ... 100
+        raise refuse(f"a curve number is 1 ... {MAX_CURVES} (SETC n)")
+    machine = _machine_file_curves(curves)
+    if machine is not None:
+        raise refuse(machine)
     try:
-        out.print(str(plot_curve(curves, curve, master_speed, out_file, p36=p36)))
+        out.print(str(plot_curve(curves, curve, master_speed, out_file, p36=p36)), markup=False, highlight=False)
     except (CompaxError, OSError, ValueError) as e:
-        console.print(f"[red]cannot plot curve {curve}[/red] of {curves}: {e}")
-        raise typer.Exit(2) from None
+        raise refuse(str(e)) from None
 
 
-clm_app = typer.Typer(help="Rexroth CLM1.4 tools: program, parameter, Logic Task and variable files.", no_args_is_help=True)
+def _machine_file_curves(path: Path) -> str | None:
+    """None unless `path` is a machine file (TOML with a [machine] or [device] table); then
+    what to give instead, with the curve CSVs that machine file names."""
+    import tomllib
+
+    try:
+        with open(path, "rb") as f:
+            head = f.read(1 << 20)
+        doc = tomllib.loads(head.decode("utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return None  # not TOML: the curve reader says what it is
+    if not isinstance(doc, dict) or not ({"machine", "device"} & set(doc)):
+        return None
+    device = doc.get("device") if isinstance(doc.get("device"), dict) else {}
+    entries = device.get("curves") if isinstance(device.get("curves"), list) else []
+    csvs = [f"curve {c.get('number')}: {path.parent / c['csv']}" for c in entries
+            if isinstance(c, dict) and isinstance(c.get("csv"), str)]
+    memory = device.get("memory_file")
+    hint = f"; its cam memory is saved to {path.parent / memory} by `axisline serve`" if isinstance(memory, str) else ""
+    named = f"; the CSVs it names: {', '.join(csvs)}" if csvs else ""
+    return ("this is a machine file; give a saved cam memory (.json, the file device.memory_file names) "
+            f"or a master,slave CSV{named}{hint}")
+
+
+clm_app = _typer("Rexroth CLM1.4 tools: program, parameter, Logic Task and variable files.")
 app.add_typer(clm_app, name="clm")
 
 
@@ -342,7 +407,7 @@ def clm_save(
         with ClmClient(host, port, station) as clm:
             files = clm.save(directory)
     except (ClmError, OSError, ValueError) as e:
-        console.print(f"[red]clm save failed[/red]: {e}", markup=True, highlight=False)
+        console.print(f"[red]clm save failed[/red]: {escape(str(e))}", markup=True, highlight=False)
         raise typer.Exit(2) from None
     for kind, path in files.items():
         out.print(f"{path}: {kind}", markup=False, highlight=False)
@@ -369,7 +434,7 @@ def clm_display(
     from .devices.clm.errors import ClmError
 
     if screen not in SCREENS:
-        console.print(f"[red]--screen[/red] = {screen!r}: one of {', '.join(SCREENS)}")
+        console.print(f"[red]--screen[/red] = {escape(repr(screen))}: one of {', '.join(SCREENS)}")
         raise typer.Exit(2)
     wanted = tuple(b.strip() for b in io_bytes.split(",") if b.strip())
     try:
@@ -388,7 +453,7 @@ def clm_display(
     except KeyboardInterrupt:
         return
     except (ClmError, OSError, ValueError) as e:
-        console.print(f"[red]clm display failed[/red]: {e}", markup=True, highlight=False)
+        console.print(f"[red]clm display failed[/red]: {escape(str(e))}", markup=True, highlight=False)
         raise typer.Exit(2) from None
 
 
@@ -440,7 +505,7 @@ def serve(
     for kind, ep in wanted.items():
         base_kind = "serial-tcp" if kind == "serial-pty" else kind
         if ep is not None and base_kind not in offered:
-            console.print(f"[red]--{kind}[/red]: this machine (personality {cfg.machine.personality!r}) offers no such endpoint")
+            console.print(f"[red]--{kind}[/red]: this machine (personality {escape(repr(cfg.machine.personality))}) offers no such endpoint")
             raise typer.Exit(2)
     if m.device is not None:
         m.device.network_writes = allow_writes
@@ -463,7 +528,7 @@ def serve(
     signal.signal(signal.SIGINT, _stop)
     signal.signal(signal.SIGTERM, _stop)
     limit = None if duration is None else max(1, round(duration / m.period))
-    console.print(f"serving {machine} on the wall clock, cycle {m.clock.period_us} us; Ctrl-C stops")
+    console.print(f"serving {escape(str(machine))} on the wall clock, cycle {m.clock.period_us} us; Ctrl-C stops")
     print("ready", flush=True)
     try:
         n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
@@ -477,7 +542,7 @@ def serve(
     try:
         saved = m.persist()
     except OSError as e:  # the check refused unwritable paths; this one failed since
-        console.print(f"[red]cannot save[/red] what must persist: {e}", markup=True)
+        console.print(f"[red]cannot save[/red] what must persist: {escape(str(e))}", markup=True)
         print("stopped", flush=True)
         raise typer.Exit(1) from None
     late = getattr(m.clock, "late_max", 0.0)

@@ -216,7 +216,7 @@ def parse_machine(data: dict, source: str = "<machine>") -> MachineConfig:
     try:
         config = MachineConfig.model_validate(data)
     except ValidationError as err:
-        raise explain(err, MachineConfig, source) from None
+        raise explain(err, MachineConfig, source, data) from None
     device_config(config, source)  # the personality's table is checked with the rest of the file
     return config
 
@@ -237,7 +237,7 @@ def device_config(config: MachineConfig, source: str = "<machine>"):
     try:
         return cls.Config.model_validate(config.device)
     except ValidationError as err:
-        inner = explain(err, cls.Config, source)
+        inner = explain(err, cls.Config, source, config.device)
         raise ConfigError(source, [f"device.{p}" for p in inner.problems]) from None
 
 

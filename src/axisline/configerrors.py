@@ -4,6 +4,11 @@ pydantic reports a location tuple and a message; a commissioning engineer wants
 "axis[1].drive.tau = -0.01: must be > 0 (allowed: > 0)". The allowed range is read
 from the field's own constraints, so the schema stays the single source of truth.
 
+An entry of a list of tables that has a name is named by it as well: the engineer's file says
+`[[axis]] name = "x"`, not "axis 0", so a line reads "axis[0].v_max = -5.0 (axis 'x'): ...".
+An unknown key gets the closest known key as a suggestion ("did you mean v_max?"), found with
+difflib (a typo, a missing underscore, a different case).
+
 A value is echoed shortened (`shown`): an error must stay a line, whatever the file holds.
 `read_text` reads the machine file and the files it names within a size limit, and
 `FilePath` is the type of a file name in it.
@@ -11,6 +16,7 @@ A value is echoed shortened (`shown`): an error must stay a line, whatever the f
 
 from __future__ import annotations
 
+import difflib
 import os
 import reprlib
 import typing
@@ -182,32 +188,88 @@ def allowed_range(info) -> str:
     return lo or hi or ""
 
 
-def explain(err: ValidationError, model: type[BaseModel], source: str) -> ConfigError:
+def _singular(key: str) -> str:
+    """'switches' -> 'switch', 'marks' -> 'mark', 'axis' -> 'axis': one entry of a list."""
+    if key.endswith("ches") or key.endswith("shes"):
+        return key[:-2]
+    if key.endswith("s") and not key.endswith(("is", "ss", "us")):
+        return key[:-1]
+    return key
+
+
+def named_entries(loc: tuple[Any, ...], data: Any) -> list[tuple[str, str]]:
+    """The named list entries on the way to `loc` in the input `data`, as (kind, name) pairs:
+    [("axis", "x"), ("switch", "ref")]; [] when none has a name (or data is not given).
+
+    The data is walked along the location; parts that are not in it (the tag pydantic puts
+    in for a discriminated union, such as 'servo') are skipped. An entry's own `name` key in
+    error does not name it (that would only repeat the bad value)."""
+    found: list[tuple[str, str]] = []
+    node, last_key = data, None
+    for i, part in enumerate(loc):
+        if isinstance(part, int) and isinstance(node, list) and 0 <= part < len(node):
+            node = node[part]
+            name = node.get("name") if isinstance(node, dict) else None
+            names_itself = loc[i + 1 :] == ("name",)
+            if isinstance(name, str) and name and last_key is not None and not names_itself:
+                found.append((_singular(last_key), name))
+        elif isinstance(part, str) and isinstance(node, dict) and part in node:
+            node, last_key = node[part], part
+    return found
+
+
+def _label(named: list[tuple[str, str]], text: str = "") -> str:
+    """"axis 'x', switch 'ref'", or '' when there is nothing to add: no named entry, or a
+    message (a table's cross-check) that names them itself."""
+    if not named or all(repr(name) in text for _, name in named):
+        return ""
+    return ", ".join(f"{kind} {shown(name)}" for kind, name in named)
+
+
+def closest_key(bad: Any, known: list[str]) -> str | None:
+    """The known key a typo most likely meant ('vmax' -> 'v_max', 'V_Max' -> 'v_max'), or None
+    when none is close (difflib's ratio >= 0.6, case ignored)."""
+    if not isinstance(bad, str) or not bad or len(bad) > 200:  # no quadratic work on a huge key
+        return None
+    lowered = {k.lower(): k for k in known}
+    found = difflib.get_close_matches(bad.lower(), list(lowered), n=1, cutoff=0.6)
+    return lowered[found[0]] if found else None
+
+
+def explain(err: ValidationError, model: type[BaseModel], source: str, data: Any = None) -> ConfigError:
+    """The ConfigError for a ValidationError of `model`; pass the validated input as `data` so
+    that named entries (an axis, a switch, a master) are named in the lines."""
     problems = []
     errors = err.errors(include_url=False)
     for e in errors[:MAX_PROBLEMS]:
         loc = tuple(e["loc"])
         info, clean, _ = _walk(model, loc)
         key = _key(clean)
+        named = named_entries(loc, data)
+        label = _label(named)
+        where = f" ({label})" if label else ""
         if e["type"] == "extra_forbidden":
             owners = _walk(model, loc[:-1])[2] if len(loc) > 1 else [model]
-            known = ", ".join(dict.fromkeys(k for m in owners for k in m.model_fields))
-            problems.append(f"{key}: unknown key (known keys here: {known})")
+            known = list(dict.fromkeys(k for m in owners for k in m.model_fields))
+            guess = closest_key(loc[-1] if loc else None, known)
+            hint = f"; did you mean {guess}?" if guess else ""
+            problems.append(f"{key}: unknown key{where}{hint} (known keys here: {', '.join(known)})")
             continue
         if e["type"] == "value_error" and (not loc or isinstance(e.get("input"), dict)):
             # a cross-check of a whole table: the message names its keys itself
             text = str(e["msg"]).removeprefix("Value error, ")
-            problems.append(f"{key}: {text}" if loc else text)
+            label = _label(named, text)  # after the message: "KEY: message" stays as it was
+            problems.append((f"{key}: {text}" + (f" (in {label})" if label else "")) if loc else text)
             continue
         if e["type"] == "missing":
-            problems.append(f"{key}: required key is missing")
+            problems.append(f"{key}: required key is missing{where}")
             continue
         rng = allowed_range(info)
         value = e.get("input")
         msg = e["msg"]
         if len(msg) > 2 * VALUE_CHARS:  # pydantic quotes some inputs whole (a union's tag)
             msg = msg[: 2 * VALUE_CHARS - 3] + "..."
-        line = f"{key} = {shown(value)}: {msg}"
+        line = f"{key} = {shown(value)}{where}: {msg}"
         if rng:
             line += f" (allowed: {rng})"
         problems.append(line)

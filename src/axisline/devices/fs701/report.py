@@ -121,7 +121,14 @@ def report_section(d: Mapping[str, Any], plots: list[Path] | None = None) -> str
         lines += ["### Batch job", "", "| t [s] | event |", "|---|---|"]
         lines += [f"| {e['t']:.3f} | {e['text']} |" for e in d["job_events"]]
         lines.append("")
-    lines += ["### Cuts", "", cut_table_markdown(d)]
+    lines += ["### Cuts", ""]
+    first = d["cuts"][0] if d["cuts"] else None
+    if first is not None and first["index"] == 1 and first["actual_length"] is None:
+        # a reader sees "-" in the first row and asks why (decision M2 of the personality)
+        lines += [f"Cut {first['index']} has no piece length: a piece is the material between two cuts, and the first "
+                  "cut of the run has no cut before it (it trims the start of the material), so it is recorded but not "
+                  "measured or checked.", ""]
+    lines.append(cut_table_markdown(d))
     for p in plots or []:
         lines.append(f"![{Path(p).stem}]({Path(p).name})")
     return "\n".join(lines) + "\n"
