@@ -183,7 +183,9 @@ class MachineConfig(_Strict):
                 raise ValueError(f"master {m.name!r}: axis = {m.axis!r}: no such axis (axes: {', '.join(names) or 'none'})")
             if m.kind == "axis_encoder" and next(a for a in self.axis if a.name == m.axis).encoder is None:
                 raise ValueError(f"master {m.name!r}: axis {m.axis!r} has no [axis.encoder]")
-            if m.kind == "wheel" and self.material is None:
+            if m.carrier is not None and m.carrier not in names:
+                raise ValueError(f"master {m.name!r}: carrier = {m.carrier!r}: no such axis (axes: {', '.join(names) or 'none'})")
+            if m.kind == "wheel" and self.material is None and m.carrier is None:
                 raise ValueError(f"master {m.name!r}: a measuring wheel needs a [material] line")
         for i, step in enumerate(self.job.steps):
             if step.command in ("gear_in", "gear_in_pos", "cam_in", "set_master_velocity") and step.master not in masters:

@@ -2,7 +2,8 @@
 
     [[master]]   a master the slaves follow: virtual (velocity with ramps), time_base,
                  axis (another axis' set point or actual), wheel (a measuring wheel on the
-                 material line) or axis_encoder (the encoder of an axis)
+                 material line, or with ``carrier`` on material a feed roll moves) or
+                 axis_encoder (the encoder of an axis)
     [[cam]]      a cam curve: a point table, a C2 spline or segments of motion laws
 
 Job steps then couple axes: gear_in, gear_in_pos, cam_in, cam_out, sync_out, and change a
@@ -20,12 +21,12 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, model_validator
 
-from .configerrors import FilePath, read_text, shown
+from .configerrors import ConfigError, FilePath, read_text, shown
 from .motion.cam import DEFAULT_MAX_POINTS, PointTable, SplineTable
 from .motion.curve import CamCurve
 from .motion.master import AxisMaster, EncoderMaster, Master, TimeBase, VirtualMaster
 from .motion.segments import SEGMENT_LAWS, SegmentCam
-from .plant.config import MeasuringWheelConfig
+from .plant.config import MeasuringWheelConfig, SlipConfig
 
 Name = Annotated[str, Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
 
@@ -47,6 +48,12 @@ class MasterEntry(BaseModel):
     axis: str | None = Field(None, max_length=64, description="axis / axis_encoder: the axis")
     use: Literal["command", "actual"] = Field("command", description="axis: follow its set point or its actual position")
     wheel: MeasuringWheelConfig | None = Field(None, description="wheel: the measuring wheel on the material")
+    carrier: Name | None = Field(
+        None, description="wheel: an axis whose drive moves the material under the wheel (a feed roll); none: the [material] line"
+    )
+    carrier_slip: SlipConfig | None = Field(
+        None, description="wheel with a carrier: how the material slips on the feed roll (seeded); none: it does not slip"
+    )
     velocity_filter: Literal["window", "first_order"] = Field("window", description="encoder masters: speed estimate")
     sampling_time: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: window length, s")
     time_constant: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: first-order filter, s")
@@ -62,6 +69,10 @@ class MasterEntry(BaseModel):
             raise ValueError(f"master {self.name!r}: kind {self.kind!r} needs axis = the axis it follows")
         if self.kind == "wheel" and self.wheel is None:
             raise ValueError(f"master {self.name!r}: kind 'wheel' needs a [master.wheel] table")
+        if self.carrier is not None and self.kind != "wheel":
+            raise ValueError(f"master {self.name!r}: carrier = {self.carrier!r} is for a master of kind 'wheel' (this one is {self.kind!r})")
+        if self.carrier_slip is not None and self.carrier is None:
+            raise ValueError(f"master {self.name!r}: carrier_slip needs carrier = the axis whose feed roll moves the material")
         if self.velocity_filter == "first_order" and self.time_constant is None and self.kind in ("wheel", "axis_encoder"):
             raise ValueError(f"master {self.name!r}: velocity_filter 'first_order' needs time_constant")
         return self
@@ -186,8 +197,21 @@ def build_master(entry: MasterEntry, machine: Any) -> tuple[Master, Any]:
     if entry.kind == "axis_encoder":
         enc = machine.units[entry.axis].encoder
         return EncoderMaster(enc, enc.counts_per_unit, period, **filt), None
-    wheel = entry.wheel.build(machine.material, machine.child_rng(f"master:{entry.name}"))
+    wheel = entry.wheel.build(_wheel_material(entry, machine), machine.child_rng(f"master:{entry.name}"))
     return EncoderMaster(wheel, wheel.counts_per_unit, period, **filt), wheel
+
+
+def _wheel_material(entry: MasterEntry, machine: Any) -> Any:
+    """What the wheel rolls on: the [material] line, or material the carrier axis' feed roll
+    pulls with its slip (a SlipContact on the roll's drive, seeded by the master's name)."""
+    if entry.carrier is None:
+        return machine.material
+    unit = machine.units.get(entry.carrier)
+    if unit is None:
+        axes = ", ".join(machine.units) or "none"
+        raise ConfigError(getattr(machine, "source", "") or "<machine>", [f"master {entry.name!r}: carrier = {entry.carrier!r}: no such axis (axes: {axes})"])
+    slip = entry.carrier_slip if entry.carrier_slip is not None else SlipConfig()
+    return slip.build(unit.drive, machine.child_rng(f"master:{entry.name}:carrier"))
 
 
 class SyncHandle:

@@ -105,6 +105,12 @@ Decisions (spec line -> choice, why)
     program may clear it, "the axis remains homed", L3719); stop, Immediate Stop, a mode
     change or a fault end a running homing (to be started again, L3770-3775);
     tests/devices/clm/test_homing.py::test_hom_and_akn_on_the_homed_output.
+25. Measuring wheel mode (Ax00 modes 3/4, §7.2): the axis takes the wheel of its master encoder
+    (``attach_wheel``, master_encoder.py) and a `measuring_wheel.WheelMode` closes the loop
+    through it (Version 1) or corrects the targets (Version 2); POA/PSA in Version 1 is 0A;
+    decisions in measuring_wheel.py, tests in tests/devices/clm/test_measuring_wheel.py.
+26. Open Feed Roll (Ax30, §7.10): `feedroll.OpenFeedRoll` opens the loop in position and holds
+    feeds until the input is 0; decisions in feedroll.py.
 """
 
 from __future__ import annotations
@@ -121,6 +127,8 @@ from .clmloop import ClmLoop
 from .errors import ClmError, axis_fault
 from .feed_signals import FeedSignals
 from .image import ProcessImage
+from .feedroll import OpenFeedRoll
+from .measuring_wheel import WheelAxis
 from .operands import Operand
 from .parameters import ParameterSet
 from .slave import Follower
@@ -131,7 +139,7 @@ _MILLI = 1000  # program lengths are 1/1000 IU
 _MILLIONTH = 1_000_000  # FAK f.ffffff
 
 
-class ClmAxis(DriveMonitoring, AxisReferences):
+class ClmAxis(WheelAxis, OpenFeedRoll, DriveMonitoring, AxisReferences):
     """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
 
     # slave / synchronous axis (slave.py): the Follower of an Ax00 mode 1/2 axis, and the CLM's
@@ -209,6 +217,9 @@ class ClmAxis(DriveMonitoring, AxisReferences):
         mode = params.axis_mode(self.number)
         self.follower = Follower(self, mode, int(params.get(a + "00")["master"])) if mode in (1, 2) else None
         self._configure_table_and_homing(params, feed)
+        self._params = params
+        self._configure_wheel()
+        self._configure_feed_roll(params, self.number)
         self.feed_signals = FeedSignals(params, self.number, self.image, self.nc_cycle_s)  # Ax29, Ax32
         self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
                             full_volts=float(num("12", "command_voltage")), window=self.window)
@@ -288,6 +299,8 @@ class ClmAxis(DriveMonitoring, AxisReferences):
         """POA / PSA: target (1/1000 IU) x FAK; 48 without a reference, 50/51 beyond Ax03/Ax04."""
         self._check()
         n = self.number
+        if self.wheel is not None and self.wheel.version == 1:  # measuring_wheel.py decision 3
+            raise ClmError("0A", f"POA/PSA on axis {n}: in measuring wheel mode Version 1 (A{n}00 mode 3) only relative distances are traversed (L4198)")
         if not self.homed:
             raise ClmError(axis_fault(0x08, n), f"POA/PSA on axis {n} needs a reference (homing or an absolute encoder, L2265)")
         if self.iut is not None:
@@ -296,6 +309,8 @@ class ClmAxis(DriveMonitoring, AxisReferences):
             self._move_to(goal, self._velocity(per_mille))
             return
         goal = Fraction(target, _MILLI) * self._factor
+        if self.wheel is not None:  # Version 2: the compiled difference (measuring_wheel.py 4)
+            goal += self.wheel.start_movement()
         initial = goal - self._sac_shift  # the travel limits stay in the initial frame (decision 23)
         if self._linear and initial < self._min:
             raise ClmError(axis_fault(0x10, n), f"target {float(goal):.3f} is below Ax03 = {float(self._min):.3f} (L4298)")
@@ -310,7 +325,10 @@ class ClmAxis(DriveMonitoring, AxisReferences):
         self._check()
         speed = self._velocity(per_mille)
         self.feed_signals.new_feed()  # Ax29 (feed_signals.py)
-        self._move_to(self._base() + Fraction(distance, _MILLI) * self._factor, speed)
+        goal = self._base() + Fraction(distance, _MILLI) * self._factor
+        if self.wheel is not None:  # Version 2: the compiled difference (measuring_wheel.py 4)
+            goal += self.wheel.start_movement()
+        self._move_to(goal, speed)
 
     def _base(self) -> Fraction:
         if self._target is None and self._following:  # slave: the own part's frame (slave.py 7)
@@ -368,7 +386,7 @@ class ClmAxis(DriveMonitoring, AxisReferences):
     def _start(self) -> None:
         """Hand the target (or CON) to the kernel; blocked while the drive is off (decision 17)."""
         ax = self.axis
-        if not (self._drive_on and ax.powered):
+        if not (self._drive_on and ax.powered) or self.feed_roll_open:  # (feedroll.py decision 2)
             self._blocked = True
             return
         if self._following:  # slave: added to the following in velocity (slave.py 7)
@@ -504,8 +522,8 @@ class ClmAxis(DriveMonitoring, AxisReferences):
             self.stop_motion()
             return
         ax = self.axis
-        if not (self._drive_on and ax.powered):
-            return  # nothing moves (Inhibit Operation); asked again next cycle
+        if not (self._drive_on and ax.powered) or self.feed_roll_open:
+            return  # nothing moves (Inhibit Operation, an open feed roll); asked again next cycle
         self._con = None
         self._kept = self._blocked = self._braking = False
         a, d, j = self.acceleration, self.deceleration, self._jerk()

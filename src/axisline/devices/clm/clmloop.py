@@ -23,6 +23,11 @@ L4532) it is "Drive Runaway" when the actual position, as the encoder sees it, m
 from the model position (positive feedback, "moving without command", a faster drive:
 L4520), else "Position Lag" (a drive that is slower, stalled or not enabled: L4522).
 `ClmAxis.tick` turns ``excess`` into the fault per the Ax14 mode (decisions there).
+
+``feedback`` (measuring wheel mode, measuring_wheel.py): when set, ``feedback.actual(motor)``
+turns the motor encoder's position into the loop's actual position each cycle (Version 1: the
+motor plus what the wheel measured differently), before anything else sees it. ``open`` (Ax30,
+feedroll.py): the loop commands 0 V and the Ax14 model waits, as without power.
 """
 
 from __future__ import annotations
@@ -56,6 +61,8 @@ class ClmLoop:
         self._model = 0.0
         self._previous = 0.0
         self._sync = True  # take the model from the actual position at the next cycle
+        self.feedback: Any = None  # measuring_wheel.WheelMode of a mode 3/4 axis
+        self.open = False  # Ax30 open feed roll (feedroll.py): 0 V, no Ax14 model
 
     def configure(self, *, kv: float, feedforward: int, full_speed: float, full_volts: float, window: float) -> None:
         """kv: Ax11 factor; feedforward: Ax11 digit; full_speed: IU/s at full_volts (Ax12); window: IU."""
@@ -77,9 +84,11 @@ class ClmLoop:
 
     def __call__(self, actual_position: float, drive_velocity: float) -> float:
         ax = self.axis
+        if self.feedback is not None:  # measuring wheel: the actual position the loop closes on
+            actual_position = self.feedback.actual(actual_position)
         ax.position_loop(actual_position, drive_velocity)  # the kernel's bookkeeping (actual, lag)
         actual = ax.actual_position
-        if not ax.powered:
+        if not ax.powered or self.open:  # (open feed roll: 0 V, the roll may drift)
             self._sync = True
             self._previous = actual
             self.lag = self.deviation = self.volts = 0.0

@@ -42,6 +42,7 @@ from .errors import ClmError
 from .fields import VARIABLE_MAX, VARIABLE_SCALE, Var
 from .operands import Operand
 from .program import Instruction
+from .measuring_wheel import op_fun
 from .registration import op_rep, op_rmi, op_srm, op_srp
 from .restart import op_rsv
 
@@ -53,7 +54,6 @@ __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
 LATER = {
-    **dict.fromkeys(("FUN",), "part 3 (axis functions)"),
     **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
 }
 
@@ -528,5 +528,6 @@ HANDLERS: dict[str, Handler] = {
     "PSA": _position(True, True), "PSI": _position(False, True),
     "HOM": op_hom, "FOL": op_fol, "RTM": op_rtm, "SAC": op_sac,
     "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi_noted, "RSV": op_rsv,
+    "FUN": op_fun,  # feed length measurement (measuring_wheel.py decision 7)
     **dict.fromkeys(LATER, _later),
 }

@@ -1,15 +1,21 @@
-"""CLM1.4 master encoder 1 on the plant: the measuring-wheel encoder input X1 (C000-C003,
-manual §8.4 L5474-5531; spec §5.4), its position and velocity in IU, V011 and Status 47.
+"""CLM1.4 master encoders 1 and 2 on the plant: the measuring-wheel encoder inputs (C000-C003
+and C004-C007, manual §8.4 L5474-5561; spec §5.4), position and velocity in IU, V011, Status 47.
 
     [device]
-    master_encoder_1 = "wheel"        # a machine [[master]] of kind "wheel" (on the [material] line)
+    master_encoder_1 = "wheel"        # a machine [[master]] of kind "wheel"
+    master_encoder_2 = "wheel2"       # the same for master encoder 2 (C004-C007)
 
-    me = MasterEncoder1(machine.masters["wheel"], rt)   # rt.master_encoder; the personality ticks it
+    me = MasterEncoder(machine.masters["wheel"], rt)            # rt.master_encoder (number 1)
+    me2 = MasterEncoder(machine.masters["wheel2"], rt, 2)       # rt.master_encoder_2
     me.sample(cycle)                  # once per NC cycle, before the runtime's step
     me.position, me.velocity          # IU (exact Fraction), IU/s (32-cycle average)
 
-Without ``master_encoder_1`` nothing of this exists (``rt.master_encoder is None``): no work per
-cycle, VEO 5 / AEO proceed at once, V011 reads its stored 0, Status 47 answers 10 / 09.
+One class for both: number 1 reads C000-C002 and FAK 5, number 2 C004-C006 (FAK 5 is master
+encoder 1's, L1935). Master encoder n is the measuring wheel of axis n (L4228): on construction
+it hands itself to that axis (``ClmAxis.attach_wheel``), which uses it in Ax00 modes 3/4
+(measuring_wheel.py). Without ``master_encoder_1`` nothing of this exists (``rt.master_encoder
+is None``): no work per cycle, VEO 5 / AEO proceed at once, V011 reads its stored 0, Status 47
+answers 10 / 09.
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -37,6 +43,11 @@ Decisions (spec line -> choice, why)
 6. "Set up correctly" for VEO 5 / AEO (L2880, L1450 "C000 to C003") -> master encoder 1 is wired
    (``master_encoder_1``) and C000 in 100..10000, C002 in 0.01..5000; otherwise the command
    proceeds at once. test_veo5_scales_the_feed_with_the_line.
+7. Master encoder 2 (C004-C007, L5533-5561: "the same" as master encoder 1) -> the same class
+   with C004 / C005 / C006; FAK 5 is not applied to it (L1935 names master encoder 1 only);
+   C005's direction digit turns it as C001 does; it is axis 2's measuring wheel (L4228) and FUN's
+   second channel (V042/V043). tests/devices/clm/test_measuring_wheel.py::
+   test_master_encoder_2_reads_c004_c006_without_fak5, test_master_encoder_2_is_the_wheel_of_axis_2.
 """
 
 from __future__ import annotations
@@ -44,16 +55,27 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["MasterEncoder1", "WINDOW"]
+from .measuring_wheel import install
+
+__all__ = ["MasterEncoder", "MasterEncoder1", "WINDOW"]
 
 WINDOW = 32  # NC cycles of the velocity average (L7191)
 _MILLION = 1_000_000
 
 
-class MasterEncoder1:
-    """Master encoder 1 read from a machine master's integer counts (see the module docstring)."""
+# the parameters of each master encoder: data (graduation), type (direction), feed constant
+_PARAMETERS = {1: ("C000", "C001", "C002"), 2: ("C004", "C005", "C006")}
 
-    def __init__(self, master: Any, rt: Any) -> None:
+
+class MasterEncoder:
+    """Master encoder `number` (1 or 2) read from a machine master's integer counts (see the
+    module docstring)."""
+
+    def __init__(self, master: Any, rt: Any, number: int = 1) -> None:
+        if number not in _PARAMETERS:
+            raise ValueError(f"the CLM has master encoders 1 and 2, not {number}")
+        self.number = number
+        self._ids = _PARAMETERS[number]
         self.master = master
         self.rt = rt
         self.nc_cycle_s = float(rt.nc_cycle_s)
@@ -64,32 +86,50 @@ class MasterEncoder1:
         self.counts = 0  # since power on, in the direction of C001
         self._key: tuple[Any, ...] | None = None
         self._scale = Fraction(0)
+        axis = rt.axes.get(number)  # the measuring wheel of axis `number` (L4228)
+        attach = getattr(axis, "attach_wheel", None)
+        if attach is not None:
+            attach(self)
+        install(rt)  # V040-V043, V047/V048 read live (measuring_wheel.py)
 
     # -- parameters --------------------------------------------------------------------------
 
     def _params(self) -> tuple[int, int, Fraction]:
         p = self.rt.memory.parameters
-        graduation = int(p.get("C000")["graduation"])
-        direction = int(p.get("C001")["encoder_direction"])
-        feed = Fraction(str(p.get("C002").number("feed_constant")))
+        data, kind, constant = self._ids
+        graduation = int(p.get(data)["graduation"])
+        direction = int(p.get(kind)["encoder_direction"])
+        feed = Fraction(str(p.get(constant).number("feed_constant")))
         return graduation, direction, feed
 
     @property
+    def factor(self) -> int:
+        """FAK 5 in millionths for master encoder 1 (decision 2); master encoder 2 has none."""
+        return int(self.rt.master_factor) if self.number == 1 else _MILLION
+
+    @property
     def set_up(self) -> bool:
-        """Decision 6: C000 and C002 in their ranges (L5479, L5523)."""
+        """Decision 6: C000 and C002 (C004, C006) in their ranges (L5479, L5523)."""
         graduation, _, feed = self._params()
         return 100 <= graduation <= 10000 and Fraction(1, 100) <= feed <= 5000
 
     @property
     def scale(self) -> Fraction:
-        """IU per count: C002 x FAK 5 / (4 x C000), signed by C001's direction (decisions 1-3)."""
+        """IU per count: C002 x FAK 5 / (4 x C000), signed by C001's direction (decisions 1-3);
+        C006 / (4 x C004), signed by C005, for master encoder 2."""
         graduation, direction, feed = self._params()
-        key = (graduation, direction, feed, self.rt.master_factor)
+        factor = self.factor
+        key = (graduation, direction, feed, factor)
         if key != self._key:
             self._key = key
             sign = -1 if direction == 1 else 1
-            self._scale = Fraction(0) if graduation <= 0 else sign * feed * Fraction(self.rt.master_factor, _MILLION) / (4 * graduation)
+            self._scale = Fraction(0) if graduation <= 0 else sign * feed * Fraction(factor, _MILLION) / (4 * graduation)
         return self._scale
+
+    @property
+    def counts_per_revolution(self) -> int:
+        """4 x C000 (C004): the counts of one wheel revolution (decision 1), 0 when unset."""
+        return 4 * max(0, self._params()[0])
 
     # -- the cycle ---------------------------------------------------------------------------
 
@@ -134,3 +174,7 @@ class MasterEncoder1:
             return 0.0
         sign = -1 if direction == 1 else 1
         return sign * d / (4 * graduation) / (span * self.nc_cycle_s) * 60.0
+
+
+#: the name master encoder 1 had before master encoder 2 came (personality, tests)
+MasterEncoder1 = MasterEncoder

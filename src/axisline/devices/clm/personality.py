@@ -105,6 +105,9 @@ class ClmConfig(BaseModel):
     master_encoder_1: Name | None = Field(
         None, description="a [[master]] of kind 'wheel' whose encoder is the CLM's master encoder 1 (X1; C000-C003, master_encoder.py); none: not connected"
     )
+    master_encoder_2: Name | None = Field(
+        None, description="a [[master]] of kind 'wheel' whose encoder is the CLM's master encoder 2 (C004-C007; axis 2's measuring wheel, master_encoder.py); none: not connected"
+    )
     decade_switch: DecadeSwitchConfig | None = Field(
         None,
         description="an IDS01 decade switch on X6, read when B002 selects it (function digit 1): V015-V018, "
@@ -151,14 +154,18 @@ class ClmPersonality(Personality):
         self._input_places = [(ProcessImage.locate(op), source) for op, source in self._inputs]
         self._output_places = [(ProcessImage.locate(op), name) for op, name in self._outputs]
         self._check_cycle(problems)
-        me_master = None
-        if config.master_encoder_1 is not None:
-            kinds = {m.name: m.kind for m in mc.master}
-            if kinds.get(config.master_encoder_1) != "wheel":
+        me_masters: dict[int, Any] = {}  # master encoder 1 / 2 -> its wheel master
+        kinds = {m.name: m.kind for m in mc.master}
+        for number, name in ((1, config.master_encoder_1), (2, config.master_encoder_2)):
+            if name is None:
+                continue
+            if kinds.get(name) != "wheel":
                 have = ", ".join(n for n, k in kinds.items() if k == "wheel") or "none"
-                problems.append(f"device.master_encoder_1 = {config.master_encoder_1!r}: no [[master]] of kind 'wheel' of that name (wheels: {have})")
+                problems.append(f"device.master_encoder_{number} = {name!r}: no [[master]] of kind 'wheel' of that name (wheels: {have})")
             else:
-                me_master = machine.masters[config.master_encoder_1]
+                me_masters[number] = machine.masters[name]
+        if config.master_encoder_1 is not None and config.master_encoder_1 == config.master_encoder_2:
+            problems.append(f"device.master_encoder_2 = {config.master_encoder_2!r}: that wheel is master encoder 1 already (one wheel, one encoder input)")
         if config.decade_switch is not None:
             problems += config_problems(config.decade_switch)
         if problems:
@@ -171,11 +178,13 @@ class ClmPersonality(Personality):
             clm_axis.peers = axes
         self.rt = ClmRuntime(self.memory, axes, cycle_s)
         self.rt.on_move = self._moved
-        if me_master is not None:
-            from .master_encoder import MasterEncoder1
+        from .master_encoder import MasterEncoder
 
-            self.rt.master_encoder = MasterEncoder1(me_master, self.rt)
-        self._master_encoder = self.rt.master_encoder
+        # master encoder n is the measuring wheel of axis n (it attaches itself, master_encoder.py)
+        encoders = {n: MasterEncoder(master, self.rt, n) for n, master in me_masters.items()}
+        self.rt.master_encoder = encoders.get(1)
+        self.rt.master_encoder_2 = encoders.get(2)
+        self._master_encoders = tuple(encoders.values())
         self._wire_marks(config)
         self.analog = AnalogIO(ANALOG_INPUTS)  # AE1..AE4 (a test or the operator may set_input them)
         for name, volts in config.analog_inputs.items():
@@ -313,8 +322,8 @@ class ClmPersonality(Personality):
             analog.tick()
         if velocity.needs_analog:
             velocity.analog_volts[:] = analog.all_volts()
-        if self._master_encoder is not None:  # (nothing per cycle without master encoder 1)
-            self._master_encoder.sample(cycle)
+        for encoder in self._master_encoders:  # (nothing per cycle without a master encoder)
+            encoder.sample(cycle)
         self.ids.tick(cycle)  # the IDS01 on X6 (a fault 12-15 stops the tasks before they run)
         self.rt.step()
         self._ever_ran = self._ever_ran or self.rt.modes.running

@@ -224,7 +224,8 @@ class ClmRuntime:
         return axis
 
     def feed_allowed(self, axis: Any) -> bool:
-        return self.modes.feed_allowed(axis.number)
+        """No Interrupt (Ax15) and no open feed roll (Ax30, feedroll.py decision 2)."""
+        return self.modes.feed_allowed(axis.number) and not getattr(axis, "feed_roll_open", False)
 
     def moved(self, axis: Any, task: NcTask) -> None:
         if self.on_move is not None:
@@ -236,7 +237,10 @@ class ClmRuntime:
         axis = self.axes.get(axis_number)
         if axis is None or axis.homed:
             raise ClmError("31", f"V{number:03d} can be set only while axis {axis_number} is not homed (L2590)")
-        axis.set_actual(raw / _SCALE)
+        if number in (47, 48) and hasattr(axis, "set_motor_actual"):  # the motor encoder (measuring_wheel.py 8)
+            axis.set_motor_actual(raw / _SCALE)
+        else:
+            axis.set_actual(raw / _SCALE)
 
     # -- program flow -------------------------------------------------------------------------
 

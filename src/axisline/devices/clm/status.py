@@ -346,8 +346,10 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
         if me is None or int(rt.memory.parameters.get("C000")["graduation"]) == 0:
             raise _measuring_wheel(rt, number)
         return f"47 0 {_fixed(max(-9999.99, min(9999.99, me.rpm)), 4, 2)} "  # master_encoder.py decision 5
-    if number == 9:
-        raise _measuring_wheel(rt, number)
+    if number == 9:  # the measuring wheel and the motor encoder of axis 1 (measuring_wheel.py decision 8)
+        from .measuring_wheel import status_09
+
+        return status_09(rt)
     if number == 41:  # the axis-1 position latched at the last raster (registration decision 6)
         axis = _axis(rt, 1)
         homed = "A" if axis is not None and getattr(axis, "homed", False) else " "
