@@ -330,3 +330,24 @@ def test_an_axis_starting_away_from_zero_is_enabled_where_it_stands(tmp_path):
         m.scheduler.run_cycle()
     assert axis.state is not AxisState.ERROR_STOP
     assert abs(axis.following_error) < 0.1  # (the job starts moving at once: a lag, not 45 mm)
+
+
+def test_set_directions_turns_a_mirrored_encoder_round(tmp_path):
+    """Machine.set_directions: the x slide's encoder mounted mirrored (direction = -1) runs away
+    with the kernel loop; counted the other way by the controller it completes the job exactly
+    as the correctly wired machine does. A stepper has nothing to turn."""
+    text = (EXAMPLES / "positioning.toml").read_text()
+    mirrored = text.replace("[axis.encoder]", "[axis.encoder]\ndirection = -1", 1)
+    (tmp_path / "m.toml").write_text(mirrored)
+    wrong = Machine.from_file(tmp_path / "m.toml")
+    assert not wrong.run().completed  # following error: the loop pushes the wrong way
+    fixed = Machine.from_file(tmp_path / "m.toml")
+    fixed.set_directions("x", feedback=-1)
+    result = fixed.run()
+    assert result.completed, result.faults
+    ref, _ = run_example()
+    assert fixed.axis("x").position == pytest.approx(ref.axis("x").position, abs=2 / 2000)
+    with pytest.raises(ValueError, match="stepper"):
+        fixed.set_directions("r", output=-1)
+    with pytest.raises(ValueError, match="-1"):
+        fixed.set_directions("x", feedback=0)

@@ -62,27 +62,33 @@ class AxisUnit:
     #: the controller's output is volts on the analog input (else a velocity, units/s)
     controller_volts: bool = False
     command_volts: float = 0.0
+    #: the controller's counting direction of the encoder and polarity of its command
+    #: (Machine.set_directions): -1 turns a miswired encoder or command output round
+    feedback_sign: float = 1.0
+    output_sign: float = 1.0
 
     def __post_init__(self) -> None:
         self._unit_per_count = 1.0 / self.encoder.counts_per_unit if self.encoder is not None else 0.0
 
     def sample(self, cycle: int) -> None:
         if self.encoder is not None:
-            self.actual_position = self.encoder.sample() * self._unit_per_count
+            self.actual_position = self.encoder.sample() * self._unit_per_count * self.feedback_sign
         else:
-            self.actual_position = self.drive.position
+            self.actual_position = self.drive.position * self.feedback_sign
 
     def loop(self, cycle: int) -> None:
         drive = self.drive
         v = drive.velocity
         ctl = self.controller
+        v = v * self.feedback_sign  # the drive's velocity as the controller's encoder sees it
+        sign = self.output_sign
         if ctl is None:
-            self.velocity_output = self.axis.position_loop(self.actual_position, v)
+            self.velocity_output = self.axis.position_loop(self.actual_position, v) * sign
         elif self.controller_volts:
-            self.command_volts = u = ctl(self.actual_position, v)
+            self.command_volts = u = ctl(self.actual_position, v) * sign
             self.velocity_output = u * drive.velocity_per_volt  # nominal: the scope's "output"
         else:
-            self.velocity_output = ctl(self.actual_position, v)
+            self.velocity_output = ctl(self.actual_position, v) * sign
         fe = self.axis.following_error
         peak = self.max_following_error
         if fe > peak or -fe > peak:
@@ -279,6 +285,19 @@ class Machine:
             raise ValueError(f"axis {axis!r}: a stepper drive has no position loop to replace")
         unit.controller = controller
         unit.controller_volts = bool(volts)
+
+    def set_directions(self, axis: str, *, feedback: int = 1, output: int = 1) -> None:
+        """The controller's view of `axis`' wiring: `feedback = -1` counts the encoder the other
+        way, `output = -1` turns the command's polarity (a drive direction parameter, the CLM's
+        Ax21). Both -1 reverse the axis' direction of motion on an unchanged plant."""
+        for name, value in (("feedback", feedback), ("output", output)):
+            if value not in (1, -1):
+                raise ValueError(f"{name} direction is +1 or -1, not {value}")
+        unit = self.units[axis]
+        if isinstance(unit.drive, StepperDrive) and (feedback, output) != (1, 1):
+            raise ValueError(f"axis {axis!r}: a stepper drive follows its steps; it has no feedback or command polarity to turn")
+        unit.feedback_sign = float(feedback)
+        unit.output_sign = float(output)
 
     def _plant_step(self, cycle: int) -> None:
         """The rest of the plant after the drives moved: material, then every sensor's edges."""

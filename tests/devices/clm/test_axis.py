@@ -349,6 +349,39 @@ def test_runaway_with_a_reversed_encoder():
     assert [e.code for e in rig.errors] == ["42"]
 
 
+def test_ax21_turns_a_reversed_encoder_round():
+    """Ax21 (decision 27, L8731): the encoder counting backwards (the runaway above) is set
+    right with the first digit: the feed reaches its target, the plant encoder counting down."""
+    rig = started(encoder={"direction": -1}, params={"A121": "1 0 0"})
+    rig.ax.position_incremental(100_000, 500)
+    rig.run_until(lambda: rig.ax.in_position, 3.0)
+    assert rig.errors == []
+    assert rig.ax.actual_position == pytest.approx(100.0, abs=0.1)
+    unit = rig.m.units["ax1"]
+    assert unit.drive.position == pytest.approx(100.0, abs=0.1)  # the slide moved forward
+    assert unit.encoder.counts < 0  # while its encoder counted down (mounted the other way)
+
+
+def test_ax21_output_alone_runs_away():
+    """Ax21 (decision 27): a turned output on a correctly wired axis is the manual's runaway
+    cause 1 (L4565 "Ax21 'Direction' conflicts with the encoder wiring or the command value"): 42."""
+    rig = started(params={"A121": "0 1 0"})
+    rig.ax.position_incremental(100_000, 500)
+    rig.run_until(lambda: bool(rig.errors), 2.0)
+    assert [e.code for e in rig.errors] == ["42"]
+
+
+def test_ax21_both_reverse_the_motion():
+    """Ax21 "1 1 0" (decision 27, "Designated directions can be combined"): the program's +100
+    moves the slide 100 backwards, and the CLM reads +100 there."""
+    rig = started(params={"A121": "1 1 0"})
+    rig.ax.position_incremental(100_000, 500)
+    rig.run_until(lambda: rig.ax.in_position, 3.0)
+    assert rig.errors == []
+    assert rig.ax.actual_position == pytest.approx(100.0, abs=0.1)
+    assert rig.m.units["ax1"].drive.position == pytest.approx(-100.0, abs=0.1)
+
+
 def test_ax14_output_instead_of_the_message():
     """Ax14 mode 1 (L4504, L4512): messages off, the output "Position error > Max. allowable
     deviation" is set instead."""

@@ -111,6 +111,16 @@ Decisions (spec line -> choice, why)
     decisions in measuring_wheel.py, tests in tests/devices/clm/test_measuring_wheel.py.
 26. Open Feed Roll (Ax30, §7.10): `feedroll.OpenFeedRoll` opens the loop in position and holds
     feeds until the input is 0; decisions in feedroll.py.
+27. Ax21 Drive Direction (L4669-4676, figure lost: three digits, "Designated directions can be
+    combined"; L8731 "The designated direction for position detection (encoder) and/or for the
+    analog output are opposite of the cable connection ... change designated direction in
+    Parameter Ax21") -> the first digit turns the encoder's counting direction, the second the
+    analog output's polarity (any digit but 0 turns, as parameters decision 8 leaves the digits
+    unchecked); both together reverse the axis' direction of motion on unchanged wiring (the
+    "combination"); the third has no function. Taken with the other parameters on leaving
+    Parameter mode (kernel `Machine.set_directions`). Tests:
+    tests/devices/clm/test_axis.py::test_ax21_turns_a_reversed_encoder_round,
+    test_ax21_output_alone_runs_away, test_ax21_both_reverse_the_motion.
 """
 
 from __future__ import annotations
@@ -224,6 +234,9 @@ class ClmAxis(WheelAxis, OpenFeedRoll, DriveMonitoring, AxisReferences):
         self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
                             full_volts=float(num("12", "command_voltage")), window=self.window)
         self.machine.drive_by(self.axis_name, self.loop, volts=True)
+        p21 = params.get(a + "21")  # decision 27
+        self.machine.set_directions(self.axis_name, feedback=-1 if int(p21["encoder_direction"]) else 1,
+                                    output=-1 if int(p21["output_direction"]) else 1)
         self.reset_defaults()
 
     def _round_jerk_time(self, seconds: float) -> float | None:

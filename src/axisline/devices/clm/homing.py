@@ -99,7 +99,7 @@ class EncoderMarker:
         enc = self.unit.encoder
         x = enc.index_position
         enc.arm_index()
-        return enc.counts_at(x) / enc.counts_per_unit + self.unit.axis.position_offset
+        return enc.counts_at(x) / enc.counts_per_unit * self.unit.feedback_sign + self.unit.axis.position_offset
 
 
 class ClmHoming(HomingProcedure):

@@ -348,9 +348,9 @@ AXIS_ROWS: tuple[Row, ...] = (
         digit("track_monitoring", ON_OFF, "0 = enabled, 1 = disabled (as C001, L5499-5500)"),
     ), "0 0 00 1", "L4661-4667", "L6635"),
     Row("Ax21", "Drive Direction", (
-        digit("direction_1", None, "figure lost; 'Designated directions can be combined' (L4676)"),
-        digit("direction_2", None, "figure lost"),
-        digit("direction_3", None, "figure lost"),
+        digit("encoder_direction", None, "not 0 = count the encoder the other way (figure lost; L8731 'designated direction for position detection', axis.py decision 27)"),
+        digit("output_direction", None, "not 0 = turn the analog output's polarity (L8731 'for the analog output', axis.py decision 27)"),
+        digit("direction_3", None, "figure lost; no function in axisline (axis.py decision 27)"),
     ), "0 0 0", "L4669-4676", "L6636"),
     Row("Ax22", "Absolute Encoder Home Position", (
         number("reserved", 2, meaning="in preparation (L4680)"),
