@@ -129,15 +129,14 @@ import math
 from fractions import Fraction
 from typing import Any
 
-from axisline.motion.profiles import Limits, State, plan_velocity
-
 from .axisdrive import BRAKE_DELAY_S, DRIVE_OUTPUTS, DriveMonitoring
 from .axisref import AxisReferences, _f
+from .axisstop import StopAndJog
 from .clmloop import ClmLoop
 from .errors import ClmError, axis_fault
 from .feed_signals import FeedSignals
-from .image import ProcessImage
 from .feedroll import OpenFeedRoll
+from .image import ProcessImage
 from .measuring_wheel import WheelAxis
 from .operands import Operand
 from .parameters import ParameterSet
@@ -149,7 +148,7 @@ _MILLI = 1000  # program lengths are 1/1000 IU
 _MILLIONTH = 1_000_000  # FAK f.ffffff
 
 
-class ClmAxis(WheelAxis, OpenFeedRoll, DriveMonitoring, AxisReferences):
+class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferences):
     """CLM axis `number` (1-4) on the machine's kernel axis `axis_name`; see the module docstring."""
 
     # slave / synchronous axis (slave.py): the Follower of an Ax00 mode 1/2 axis, and the CLM's
@@ -437,128 +436,6 @@ class ClmAxis(WheelAxis, OpenFeedRoll, DriveMonitoring, AxisReferences):
             self._start()
         elif self._con is not None:
             self.stop_motion()
-
-    def stop_motion(self) -> None:
-        """PBK: brake with the current deceleration, the rest is ignored, CON off (L2219)."""
-        if self._abort_homing():
-            self._con = None
-            self._jog = 0
-            self._kept = self._blocked = False
-            return
-        self._con = None
-        self._jog = 0
-        self._kept = self._blocked = False
-        self._target = self._brake()
-
-    def immediate_stop(self) -> None:
-        """Immediate Stop input / JST: brake, keep the remaining distance (L5879, L2077)."""
-        if self._abort_homing():
-            return
-        if self._following:  # slave: the following ramps down, its activation stays (L1977)
-            self.follower.hold()  # type: ignore[union-attr]
-        if self._con is not None or self._jog:
-            self.stop_motion()  # CON is switched off (L2077), a jog ends
-            return
-        if self._target is None or self.motion_done:
-            return
-        self._blocked = False
-        self._kept = True
-        self._brake()
-
-    def resume(self) -> None:
-        """The next Start: the kept remaining distance first."""
-        if self.follower is not None:  # slave: synchronize again when on (L1978)
-            self.follower.release()
-        if self._kept:
-            self._kept = False
-            self._start()
-
-    def _brake(self) -> Fraction | None:
-        """Brake to rest with the current deceleration; returns where the set point stops."""
-        ax = self.axis
-        if not ax.powered:
-            return None
-        d, j = self.deceleration, self._jerk()
-        if self._following:  # slave: only the own part brakes
-            f = self.follower
-            assert f is not None
-            if f.own_done:
-                return Fraction(f.u)
-            self._braking = True
-            return Fraction(f.own_velocity(0.0, d, d, j))
-        if ax.command_velocity == 0.0 and ax.command_acceleration == 0.0 and ax.motion_ended:
-            if ax.active_command is not None:
-                ax.halt()
-            return Fraction(ax.command_position)
-        stop = self._stop_point(d, j)
-        ax.move_velocity(0.0, acceleration=d, deceleration=d, jerk=j)
-        self._braking = True
-        return Fraction(stop)
-
-    def _stop_point(self, d: float, j: float | None) -> float:
-        """Where move_velocity(0, d, d, j) from the set point ends: the kernel's plan, mirrored."""
-        ax = self.axis
-        c = ax.config
-        shape = c.shape if c.shape is not None else ("jerk" if c.j_max is not None else "trapezoid")
-        if j is not None and shape == "trapezoid":
-            shape = "jerk"
-        jj = j if j is not None else c.j_max
-        if jj is not None and c.j_max is not None:
-            jj = min(jj, c.j_max)
-        d_max = c.d_max if c.d_max is not None else c.a_max
-        lim = Limits(v=c.v_max, a=min(d, c.a_max), d=min(d, d_max), j=jj if shape != "trapezoid" else None)
-        prof = plan_velocity(shape, State(ax.command_position, ax.command_velocity, ax.command_acceleration), 0.0, lim)
-        return prof.sample(prof.duration)[0]
-
-    def clear_lag(self) -> None:
-        """CPL: the set point becomes the actual position, once (decision 18)."""
-        self._check()
-        ax = self.axis
-        self._con = None
-        self._jog = 0
-        self._kept = self._blocked = self._braking = False
-        if ax.powered:
-            ax.power(False)
-            ax.power(True)
-        self._target = Fraction(ax.actual_position)
-        if self.follower is not None and self.follower.attached:  # slave: in the own part's frame
-            self._target -= Fraction(self.follower.follow_position)
-        self.loop.resync()
-
-    def jog(self, direction: int) -> None:
-        """Manual: -1 / 0 / +1 at Ax07 (decisions 15, 19); called every cycle with the keys."""
-        if direction not in (-1, 0, 1):
-            raise ValueError(f"jog direction is -1, 0 or +1, not {direction}")
-        if direction == self._jog:
-            return
-        if direction == 0:
-            self.stop_motion()
-            return
-        ax = self.axis
-        if not (self._drive_on and ax.powered) or self.feed_roll_open:
-            return  # nothing moves (Inhibit Operation, an open feed roll); asked again next cycle
-        self._con = None
-        self._kept = self._blocked = self._braking = False
-        a, d, j = self.acceleration, self.deceleration, self._jerk()
-        if self._following:  # slave jog keys: only the slave moves (L3495)
-            self.follower.own_velocity(direction * self._vjog, a, d, j)  # type: ignore[union-attr]
-            self._jog = direction
-            self._target = None
-            return
-        if self._limits_apply():
-            limit = (self._max if direction > 0 else self._min) + self._sac_shift
-            if (Fraction(ax.command_position) - limit) * direction >= 0:
-                self._jog = direction  # the key is dead at the limit (L4294, L4330)
-                self._target = None
-                return
-            ax.move_absolute(float(limit), velocity=self._vjog, acceleration=a, deceleration=d, jerk=j)
-        else:
-            ax.move_velocity(direction * self._vjog, acceleration=a, deceleration=d, jerk=j)
-        self._jog = direction
-        self._target = None
-
-    def _limits_apply(self) -> bool:
-        return self._linear and self.homed
 
     # ------------------------------------------------------------------ references
 
