@@ -86,9 +86,15 @@ class ModeMachine:
         self._pending_interrupt = False
         self._previous: dict[Operand, int] = {}
         self._data = rt.image.data  # the image's bytes (never replaced, written in place)
-        self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, *ENABLE.values())}
+        self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, RESTART,
+                                                              RESTART_FIELDBUS, *ENABLE.values(), *(k for keys in JOG.values() for k in keys))}
+        # the four edges evaluate() looks for every cycle, read in one pass (no call per input)
+        self._edge_places = tuple(self._places[op][:2] for op in (CLEAR, START, RESTART, RESTART_FIELDBUS))
+        self._edge_before = [0, 0, 0, 0]
+        self._mode_places = (self._places[PARAMETER][:2], self._places[AUTOMATIC][:2])
         self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_RESTART)]
         self._reserved_q2 = ProcessImage.locate(Operand("Q", 2, 1, 0))
+        self._mirror_places = tuple((ProcessImage.locate(a), ProcessImage.locate(b)) for a, b in zip(_Q0, _STATUS_WORD))
         self.enabled_axes: frozenset[int] = frozenset()  # B000's axes, less those !MxOFF switched off
         self._parameter_axes: frozenset[int] = frozenset()
         self.interface_off: set[int] = set()
@@ -125,7 +131,9 @@ class ModeMachine:
         return bool(self._bit(ENABLE[number]))
 
     def _wanted(self) -> str:
-        p, a = self._bit(PARAMETER), self._bit(AUTOMATIC)
+        data = self._data
+        (pa, ps), (aa, as_) = self._mode_places
+        p, a = data[pa] >> ps & 1, data[aa] >> as_ & 1
         if p and a:
             return "invalid"
         return "parameter" if p else "automatic" if a else "manual"
@@ -134,10 +142,13 @@ class ModeMachine:
 
     def evaluate(self) -> None:
         wanted = self._wanted()
-        clear = self._rising(CLEAR)
-        start = self._rising(START)
-        restart = self._rising(RESTART)
-        restart = self._rising(RESTART_FIELDBUS) or restart  # restart.py decision 13
+        data, before = self._data, self._edge_before
+        (ca, cs), (sa, ss), (ra, rs), (fa, fs) = self._edge_places
+        now = (data[ca] >> cs & 1, data[sa] >> ss & 1, data[ra] >> rs & 1, data[fa] >> fs & 1)
+        clear = bool(now[0] and not before[0])
+        start = bool(now[1] and not before[1])
+        restart = bool((now[2] and not before[2]) or (now[3] and not before[3]))  # restart.py decision 13
+        before[:] = now
         if self.mode == "power-on":
             self._power_on()
         if wanted == "invalid":
@@ -445,8 +456,8 @@ class ModeMachine:
         if 1 <= selector <= 6 and self.fault_error is not None:
             code = self.fault_error.code
             image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)
-        for source, mirror in zip(_Q0, _STATUS_WORD):
-            image.set(mirror, image.get(source))
+        for (src, _, _), (dst, _, _) in self._mirror_places:  # Q0.00 / Q0.01 -> the status word Q2.00 / Q2.01
+            data[dst] = data[src]
         at, shift, _ = self._reserved_q2  # Restart possible has no status-word bit
         data[at] &= ~(1 << shift)
 

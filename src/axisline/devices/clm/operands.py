@@ -45,7 +45,7 @@ Decisions (spec line -> choice, why)
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from .errors import ClmError
 
@@ -88,22 +88,16 @@ _FIRST_WRITABLE_BYTE = {("Q", 2): 2}  # Q2.00-Q2.01 are the Profibus status word
 _PATTERN = re.compile(r"([IQM]?)(\d{1,2})\.(\d\d)(?:\.(\d))?\Z")  # two source digits: the "00" of 00.00.0
 
 
-@dataclass(frozen=True, slots=True)
-class Operand:
-    """``area`` 'I' | 'Q' | 'M' ('' for the parameters' ``00.00.0`` "not programmed")."""
+class Operand(NamedTuple):
+    """``area`` 'I' | 'Q' | 'M' ('' for the parameters' ``00.00.0`` "not programmed").
+
+    A tuple: the image and the mode machine look operands up in dicts several times a cycle,
+    and a tuple's hash and equality run in C."""
 
     area: str
     source: int
     byte: int
     bit: int | None = None  # None: a byte operand
-    # the image looks an operand up in a dict several times a cycle: hash it once
-    _hash: int = field(init=False, repr=False, compare=False)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "_hash", hash((self.area, self.source, self.byte, self.bit)))
-
-    def __hash__(self) -> int:
-        return self._hash
 
     @property
     def is_bit(self) -> bool:
