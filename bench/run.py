@@ -12,8 +12,8 @@
   seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time);
   and the cut accuracy of the three FS701 examples (issue 4's quality bars: deterministic
   figures in carriage increments, no timing);
-- clm: the roll feed of examples/roll_feed_clm.toml (CLM1.4 program, Logic Task, press) at its
-  2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
+- clm: every CLM example (examples/*_clm.toml: programs, Logic Task, axis functions, plant) at
+  its 2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
 
 Timings are printed, never asserted: they belong here, not in the unit tests.
 """
