@@ -48,7 +48,8 @@ Decisions (spec line -> choice, why)
    procedure runs (HOM is 52): while the axis is not homed and its drive is enabled, the cycle
    in which the home switch drops while the set point moves forward (Jog Forward in Manual, the
    synchronized carriage in Automatic) or rises while it moves in reverse (Jog Reverse, Manual
-   only: L3799 names Manual) makes the actual position -Ax25 (as options 3/4: Ax25 is negative
+   only: L3799 names Manual; the reverse case starts *off* the switch as §7.9 says, not "located
+   at" it as the Ax24 text has it, spec §12.3 item 10) makes the actual position -Ax25 (as options 3/4: Ax25 is negative
    in flying cutoff, L4754, so the zero point lies |Ax25| behind the switch edge) and sets the
    Homed output. Once homed, passing the switch again changes nothing (a carriage re-referenced
    at every return would shift its cut positions mid-run); the reference is lost as for every
