@@ -165,3 +165,9 @@ def roll_feed_text(program: Path, parameters: Path) -> str:
     text = text.replace('program = "clm/roll_feed.prg"', f'program = "{program.as_posix()}"')
     text = text.replace('parameters = "clm/roll_feed.par"', f'parameters = "{parameters.as_posix()}"')
     return text.replace('logic = "clm/roll_feed.lt"\n', "").replace('variables = "clm/roll_feed.var"\n', "")
+
+
+def run_to(m, until_s: float) -> None:
+    """Run the machine's cycles until the CLM's simulated time reaches `until_s` seconds."""
+    while m.device.rt.cycle * m.period < until_s - 1e-9:
+        m.scheduler.run_cycle()

@@ -14,7 +14,7 @@ from axisline.devices.clm.errors import ClmError
 from axisline.devices.clm.telegram import checksum
 from axisline.machine import Machine
 
-from .clmrig import roll_feed_text, with_parameters
+from .clmrig import roll_feed_text, with_parameters, run_to as run
 from .test_velocity import listing
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
@@ -45,11 +45,6 @@ def machine(tmp_path: Path, program: str, switch: str | None, params: dict[str, 
 
 def set_mode(m: Machine, automatic: bool) -> None:
     m.io.set_input("auto", automatic)
-
-
-def run(m: Machine, until_s: float) -> None:
-    while m.device.rt.cycle * m.period < until_s - 1e-9:
-        m.scheduler.run_cycle()
 
 
 def var(m: Machine, n: int) -> float:

@@ -10,7 +10,7 @@ import pytest
 from axisline.devices.clm.operands import parse_operand
 from axisline.machine import Machine
 
-from .clmrig import with_parameters
+from .clmrig import with_parameters, run_to as run
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 OPEN = parse_operand("I1.00.4", bit=True)  # A130's input (unwired: the test sets it)
@@ -31,11 +31,6 @@ def machine(tmp_path: Path, program: str) -> Machine:
     path = tmp_path / "m.toml"
     path.write_text(text)
     return Machine.from_file(path)
-
-
-def run(m: Machine, until_s: float) -> None:
-    while m.device.rt.cycle * m.period < until_s - 1e-9:
-        m.scheduler.run_cycle()
 
 
 def test_open_feed_roll_releases_in_position(tmp_path):

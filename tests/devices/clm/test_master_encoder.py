@@ -14,7 +14,7 @@ from axisline.configerrors import ConfigError
 from axisline.devices.clm.status import status_body
 from axisline.machine import Machine
 
-from .clmrig import roll_feed_text, with_parameters
+from .clmrig import roll_feed_text, with_parameters, run_to as run
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 COUNT_MM = 200 / (4 * 1250)  # C002 200 mm per revolution / (4 x C000 1250 lines)
@@ -41,11 +41,6 @@ def machine(tmp_path: Path, program: str, speeds: list[tuple[float, float]], par
     path = tmp_path / "m.toml"
     path.write_text(text)
     return Machine.from_file(path)
-
-
-def run(m: Machine, until_s: float) -> None:
-    while m.device.rt.cycle * m.period < until_s - 1e-9:
-        m.scheduler.run_cycle()
 
 
 def test_v011_and_status_47_follow_the_line(tmp_path):

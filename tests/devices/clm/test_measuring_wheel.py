@@ -19,7 +19,7 @@ from axisline.configerrors import ConfigError
 from axisline.kernel.scheduler import Stage
 from axisline.machine import Machine
 
-from .clmrig import Rig, with_parameters
+from .clmrig import Rig, with_parameters, run_to as run
 
 EXAMPLES = Path(__file__).resolve().parents[3] / "examples"
 WHEEL_COUNT = 200 / (4 * 1250)  # IU of one wheel count: C002 / (4 x C000)
@@ -70,11 +70,6 @@ def cut_positions(m: Machine, until_s: float, out: str = "Q1.00.0") -> list[floa
 
 def pieces(cuts: list[float]) -> list[float]:
     return [b - a for a, b in zip([0.0] + cuts, cuts)]
-
-
-def run(m: Machine, until_s: float) -> None:
-    while m.device.rt.cycle * m.period < until_s - 1e-9:
-        m.scheduler.run_cycle()
 
 
 def test_version_1_cuts_the_strip_to_length_although_the_roll_slips(tmp_path):

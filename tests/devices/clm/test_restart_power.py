@@ -31,6 +31,14 @@ def _run_saving(r: Rig, store: RetainedStore, cycles: int) -> int:
     return writes
 
 
+def _start_saving(r: Rig, store: RetainedStore) -> None:
+    """Power on, then press Start, saving the memory at each cycle as the personality does."""
+    _run_saving(r, store, 2)
+    r.set("I0.00.3", 1)
+    _run_saving(r, store, 1)
+    r.set("I0.00.3", 0)
+
+
 def _power_up(path: Path) -> Rig:
     """A new CLM on the same memory file (the process killed and started again)."""
     memory = ClmMemory()
@@ -55,10 +63,7 @@ def test_power_loss_restart_from_the_memory_file(tmp_path):
     counter of the incremental axis back where it was when the image was last written)."""
     path = tmp_path / "clm.json"
     r, store = _stored_rig(path, PROGRAM_2)
-    _run_saving(r, store, 2)
-    r.set("I0.00.3", 1)
-    _run_saving(r, store, 1)
-    r.set("I0.00.3", 0)
+    _start_saving(r, store)
     run_until(r, lambda: r.rt.tasks[0].pc == 2 and r.axes[1].pos > 110_000)
     store.save(r.rt.memory)
     doc = json.loads(path.read_text())["restart"]
@@ -79,10 +84,7 @@ def test_power_loss_in_a_program_stop_is_no_restart(tmp_path):
     Start (from 0000)."""
     path = tmp_path / "clm.json"
     r, store = _stored_rig(path, PROGRAM_2)
-    _run_saving(r, store, 2)
-    r.set("I0.00.3", 1)
-    _run_saving(r, store, 1)
-    r.set("I0.00.3", 0)
+    _start_saving(r, store)
     _run_saving(r, store, 5)
     r.set("I0.00.4", 0)
     _run_saving(r, store, 2)
@@ -98,10 +100,7 @@ def test_image_is_not_written_while_the_program_only_tests(tmp_path):
     path = tmp_path / "clm.json"
     r, store = _stored_rig(path, "0000 AEA Q1.00.0 1\n0001 BCE 0003 I1.00.0 1\n0002 JMP 0001\n0003 AEA Q1.01.0 1\n"
                                  "0004 AKN I1.00.1 1\n0005 JST 0005\n")
-    _run_saving(r, store, 2)
-    r.set("I0.00.3", 1)
-    _run_saving(r, store, 1)
-    r.set("I0.00.3", 0)
+    _start_saving(r, store)
     _run_saving(r, store, 2)
     assert _run_saving(r, store, 500) == 0
     r.set("I1.00.0", 1)
@@ -166,10 +165,7 @@ def test_power_loss_with_an_absolute_encoder_keeps_its_position(tmp_path):
     is put back); the restart then feeds to the saved target from there."""
     path = tmp_path / "clm.json"
     r, store = _stored_rig(path, PROGRAM_2, params={"A120": "0 2 24 1"})
-    _run_saving(r, store, 2)
-    r.set("I0.00.3", 1)
-    _run_saving(r, store, 1)
-    r.set("I0.00.3", 0)
+    _start_saving(r, store)
     run_until(r, lambda: r.rt.tasks[0].pc == 2 and r.axes[1].pos > 110_000)
     store.save(r.rt.memory)
     r2 = _power_up(path)
