@@ -212,6 +212,11 @@ class _Ramp:
     """Ramp law for one plan: duration factor k, position coefficient c, jerk j."""
 
     __slots__ = ("k", "c", "j", "split", "kind")
+    k: float
+    c: float
+    j: float
+    split: bool
+    kind: int
 
     def __init__(self, base: str, limits: Limits | None, amax: float) -> None:
         self.k, self.c, self.split = _BASE[base]
@@ -290,48 +295,52 @@ def _down_part(r: _Ramp, v: float, a1: float, vf: float, dmax: float, edge: bool
     return min(a2, a1), 0.0
 
 
-def _integrate(r: _Ramp, v0: float, a0: float, a1: float, t2: float, t4: float, a2: float, t6: float, emit=None):
+def _ramp_step(r: _Ramp, p: float, v: float, a_from: float, a_to: float, emit: Callable | None) -> tuple[float, float, float]:
+    """One ramp of the UDDU walk: (p, v, duration) after it (module level and typed: the walk
+    runs ~20 times per plan, and a closure's boxed floats cost more than its arithmetic)."""
+    tau = r.time(a_to - a_from)
+    if tau > 0.0:
+        da = a_to - a_from
+        if emit is not None:
+            if r.kind == _SIN2:
+                emit(_SIN2, tau, p, v, a_from, da)
+            else:
+                emit(_LINEAR, tau, p, v, a_from, math.copysign(r.j, da))
+        p += _ramp_dp(v, a_from, da, tau, r.c)
+        v += (a_from + a_to) / 2.0 * tau
+    return p, v, tau
+
+
+def _hold_step(p: float, v: float, a: float, dur: float, emit: Callable | None) -> tuple[float, float, float]:
+    if dur > 0.0:
+        if emit is not None:
+            emit(_LINEAR, dur, p, v, a, 0.0)
+        p += dur * (v + dur * a / 2.0)
+        v += a * dur
+    return p, v, dur
+
+
+def _integrate(r: _Ramp, v0: float, a0: float, a1: float, t2: float, t4: float, a2: float, t6: float,
+               emit: Callable | None = None) -> tuple[float, float, float]:
     """Walk the UDDU phases from p = 0; returns (p, v, duration). emit(kind, dur, p, v, a, x)."""
     p, v, t = 0.0, v0, 0.0
-
-    def ramp(p, v, a_from, a_to):
-        tau = r.time(a_to - a_from)
-        if tau > 0.0:
-            da = a_to - a_from
-            if emit is not None:
-                if r.kind == _SIN2:
-                    emit(_SIN2, tau, p, v, a_from, da)
-                else:
-                    emit(_LINEAR, tau, p, v, a_from, math.copysign(r.j, da))
-            p += _ramp_dp(v, a_from, da, tau, r.c)
-            v += (a_from + a_to) / 2.0 * tau
-        return p, v, tau
-
-    def hold(p, v, a, dur):
-        if dur > 0.0:
-            if emit is not None:
-                emit(_LINEAR, dur, p, v, a, 0.0)
-            p += dur * (v + dur * a / 2.0)
-            v += a * dur
-        return p, v, dur
-
-    p, v, d = ramp(p, v, a0, a1)
+    p, v, d = _ramp_step(r, p, v, a0, a1, emit)
     t += d
-    p, v, d = hold(p, v, a1, t2)
+    p, v, d = _hold_step(p, v, a1, t2, emit)
     t += d
     if t4 > 0.0 or (r.split and a1 > 0.0 > a2):
-        p, v, d = ramp(p, v, a1, 0.0)
+        p, v, d = _ramp_step(r, p, v, a1, 0.0, emit)
         t += d
-        p, v, d = hold(p, v, 0.0, t4)
+        p, v, d = _hold_step(p, v, 0.0, t4, emit)
         t += d
-        p, v, d = ramp(p, v, 0.0, a2)
+        p, v, d = _ramp_step(r, p, v, 0.0, a2, emit)
         t += d
     else:
-        p, v, d = ramp(p, v, a1, a2)
+        p, v, d = _ramp_step(r, p, v, a1, a2, emit)
         t += d
-    p, v, d = hold(p, v, a2, t6)
+    p, v, d = _hold_step(p, v, a2, t6, emit)
     t += d
-    p, v, d = ramp(p, v, a2, 0.0)
+    p, v, d = _ramp_step(r, p, v, a2, 0.0, emit)
     t += d
     return p, v, t
 
@@ -368,51 +377,87 @@ def _illinois(f: Callable[[float], float | None], lo: float, hi: float, flo: flo
 _GRID = 4  # p_end is monotonic on each interval in every case tried; a few points guard the rest
 
 
-def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: float, amax: float, dmax: float) -> list[_Cand]:
-    """All UDDU candidates (up frame) reaching (dist, vf, a=0) from (0, v0, a0)."""
-    out: list[_Cand] = []
-    k, j = r.k, r.j
+class _UpSolver:
+    """The UDDU candidates of one plan (up frame): the search state as typed fields and its
+    steps as methods, so the compiled search runs on unboxed floats (no closures)."""
 
-    def peak_v(a1: float, t2: float) -> float:
+    r: _Ramp
+    v0: float
+    a0: float
+    dist: float
+    vf: float
+    vmax: float
+    amax: float
+    dmax: float
+    k: float
+    j: float
+    vary_t2: bool  # the scan in progress: A1 = amax with t2 free, else A1 free with t2 = 0
+    out: list[_Cand]
+
+    def __init__(self, r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: float, amax: float, dmax: float) -> None:
+        self.r, self.v0, self.a0, self.dist, self.vf = r, v0, a0, dist, vf
+        self.vmax, self.amax, self.dmax = vmax, amax, dmax
+        self.k, self.j = r.k, r.j
+        self.vary_t2 = False
+        self.out = []
+
+    def peak_v(self, a1: float, t2: float) -> float:
         # velocity where the acceleration crosses zero after (a1, t2); a1 >= 0
-        return v0 + r.dv(a0, a1) + a1 * t2 + r.dv(a1, 0.0)
+        r = self.r
+        return self.v0 + r.dv(self.a0, a1) + a1 * t2 + r.dv(a1, 0.0)
 
-    def a1_for_peak(v_peak: float) -> float:
+    def a1_for_peak(self, v_peak: float) -> float:
         # A1 (no hold) whose zero crossing happens at v_peak:
         # v0 + k (A1^2 - a0^2)/(2j) + k A1^2/(2j) = v_peak
-        return math.sqrt(max(j * (v_peak - v0) / k + a0 * a0 / 2.0, 0.0))
+        a0 = self.a0
+        return math.sqrt(max(self.j * (v_peak - self.v0) / self.k + a0 * a0 / 2.0, 0.0))
 
-    # -- cruise at v_max: reach v_max with a = 0, cruise, brake to vf
-    v_stop = v0 + r.dv(a0, 0.0)
-    if v_stop <= vmax * (1.0 + 1e-12):
-        if k == 0.0:
-            a1, t2 = amax, max((vmax - v0) / amax, 0.0)
-        else:
-            a1 = a1_for_peak(vmax)
-            t2 = 0.0
-            if a1 > amax:
-                a1 = amax
-                t2 = (vmax - v0 - k * (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax
-        if a1 < a0 and v_stop >= vmax - 1e-12 * vmax:
-            a1 = a0  # already at the speed limit (within rounding): just let a fall to 0
-        if a1 >= a0 - 1e-12 and t2 >= 0.0:
-            dn = _down_part(r, vmax, 0.0, vf, dmax)
-            if dn is not None:
-                a2, t6 = dn
-                p, _, t = _integrate(r, v0, a0, a1, t2, 0.0, a2, t6)
-                t4 = (dist - p) / vmax
-                if t4 >= 0.0:
-                    out.append(_Cand(a1, t2, t4, a2, t6, t + t4))
+    def cruise(self) -> None:
+        """Reach v_max with a = 0, cruise, brake to vf."""
+        r, v0, a0, vmax, amax, k, j = self.r, self.v0, self.a0, self.vmax, self.amax, self.k, self.j
+        v_stop = v0 + r.dv(a0, 0.0)
+        if v_stop <= vmax * (1.0 + 1e-12):
+            if k == 0.0:
+                a1, t2 = amax, max((vmax - v0) / amax, 0.0)
+            else:
+                a1 = self.a1_for_peak(vmax)
+                t2 = 0.0
+                if a1 > amax:
+                    a1 = amax
+                    t2 = (vmax - v0 - k * (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax
+            if a1 < a0 and v_stop >= vmax - 1e-12 * vmax:
+                a1 = a0  # already at the speed limit (within rounding): just let a fall to 0
+            if a1 >= a0 - 1e-12 and t2 >= 0.0:
+                dn = _down_part(r, vmax, 0.0, self.vf, self.dmax)
+                if dn is not None:
+                    a2, t6 = dn
+                    p, _, t = _integrate(r, v0, a0, a1, t2, 0.0, a2, t6)
+                    t4 = (self.dist - p) / vmax
+                    if t4 >= 0.0:
+                        self.out.append(_Cand(a1, t2, t4, a2, t6, t + t4))
 
     # -- no cruise: one free parameter, first A1 in [a0, amax], then hold1 at amax
-    def end_error(a1: float, t2: float, edge: bool = False) -> float | None:
-        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax, edge)
+    def end_error(self, a1: float, t2: float, edge: bool = False) -> float | None:
+        r = self.r
+        dn = _down_part(r, self.v0 + r.dv(self.a0, a1) + a1 * t2, a1, self.vf, self.dmax, edge)
         if dn is None:
             return None
-        p, _, _ = _integrate(r, v0, a0, a1, t2, 0.0, dn[0], dn[1])
-        return p - dist
+        p, _, _ = _integrate(r, self.v0, self.a0, a1, t2, 0.0, dn[0], dn[1])
+        return p - self.dist
 
-    def scan(f, lo: float, hi: float, make, edge: bool) -> None:
+    def f(self, x: float, edge: bool) -> float | None:
+        return self.end_error(self.amax, x, edge) if self.vary_t2 else self.end_error(x, 0.0, edge)
+
+    def f_root(self, x: float) -> float | None:
+        return self.f(x, False)
+
+    def make(self, x: float, edge: bool) -> None:
+        if self.vary_t2:
+            self.add(self.amax, x, edge)
+        else:
+            self.add(x, 0.0, edge)
+
+    def scan(self, lo: float, hi: float, edge: bool) -> None:
         """Roots of f on [lo, hi]; edge: lo is the feasibility boundary A2 = 0."""
         if not hi >= lo:
             return
@@ -422,52 +467,61 @@ def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: floa
         prev_f: float | None = None
         # a root on a grid point within rounding (e.g. exactly at t2max when the start is one
         # ulp below v_max) has no sign change to bracket it: taken as found (`add` checks it)
-        zero = 1e-12 * max(1.0, abs(dist), abs(v0), abs(vf))
+        zero = 1e-12 * max(1.0, abs(self.dist), abs(self.v0), abs(self.vf))
         for i, x in enumerate(xs):
             at_edge = edge and i == 0
-            fx = f(x, at_edge)
+            fx = self.f(x, at_edge)
             if fx is None:
                 prev_x = prev_f = None
                 continue
             if abs(fx) <= zero:
-                make(x, at_edge)
+                self.make(x, at_edge)
             elif prev_f is not None and prev_x is not None and (fx > 0.0) != (prev_f > 0.0):
-                root = _illinois(lambda y: f(y, False), prev_x, x, prev_f, fx)
+                root = _illinois(self.f_root, prev_x, x, prev_f, fx)
                 if root is not None:
-                    make(root, False)
+                    self.make(root, False)
             prev_x, prev_f = x, fx
 
-    def add(a1: float, t2: float, edge: bool) -> None:
-        dn = _down_part(r, v0 + r.dv(a0, a1) + a1 * t2, a1, vf, dmax, edge)
+    def add(self, a1: float, t2: float, edge: bool) -> None:
+        r = self.r
+        dn = _down_part(r, self.v0 + r.dv(self.a0, a1) + a1 * t2, a1, self.vf, self.dmax, edge)
         if dn is None:
             return
         a2, t6 = dn
-        if a1 > 0.0 and peak_v(a1, t2) > vmax * (1.0 + 1e-9):
+        if a1 > 0.0 and self.peak_v(a1, t2) > self.vmax * (1.0 + 1e-9):
             return
-        p, v, t = _integrate(r, v0, a0, a1, t2, 0.0, a2, t6)
-        tol = 1e-9 * max(1.0, abs(dist), abs(v0), abs(vf))
-        if abs(p - dist) <= tol and abs(v - vf) <= tol:
-            out.append(_Cand(a1, t2, 0.0, a2, t6, t))
+        p, v, t = _integrate(r, self.v0, self.a0, a1, t2, 0.0, a2, t6)
+        tol = 1e-9 * max(1.0, abs(self.dist), abs(self.v0), abs(self.vf))
+        if abs(p - self.dist) <= tol and abs(v - self.vf) <= tol:
+            self.out.append(_Cand(a1, t2, 0.0, a2, t6, t))
 
+
+def _solve_up(r: _Ramp, v0: float, a0: float, dist: float, vf: float, vmax: float, amax: float, dmax: float) -> list[_Cand]:
+    """All UDDU candidates (up frame) reaching (dist, vf, a=0) from (0, v0, a0)."""
+    sol = _UpSolver(r, v0, a0, dist, vf, vmax, amax, dmax)
+    k, j = r.k, r.j
+    sol.cruise()
     # The down part exists only while it has velocity left to shed (A2 <= 0); the
     # scans start at that boundary, or a root next to it would not be bracketed.
     if k > 0.0:
         hi = amax
-        if hi > 0.0 and peak_v(hi, 0.0) > vmax:
-            hi = a1_for_peak(vmax)  # largest A1 whose zero-crossing velocity stays within v_max
+        if hi > 0.0 and sol.peak_v(hi, 0.0) > vmax:
+            hi = sol.a1_for_peak(vmax)  # largest A1 whose zero-crossing velocity stays within v_max
         hi = min(hi, amax)
         rhs = a0 * a0 / 2.0 + j * (vf - v0) / k  # feasible (A2 <= 0): A1^2 >= rhs
         edge = rhs > 0.0 and math.sqrt(rhs) > a0
         lo = math.sqrt(rhs) if edge else a0
-        scan(lambda a1, e: end_error(a1, 0.0, e), lo, hi, lambda a1, e: add(a1, 0.0, e), edge)
+        sol.vary_t2 = False
+        sol.scan(lo, hi, edge)
     if amax >= a0 - 1e-12:
         base = v0 + r.dv(a0, amax)
         t2max = (vmax - r.dv(amax, 0.0) - base) / amax
         lo = (vf - base - (k * amax * amax / (2.0 * j) if k else 0.0)) / amax
         edge = lo > 0.0
         lo = max(lo, 0.0)
-        scan(lambda t2, e: end_error(amax, t2, e), lo, t2max, lambda t2, e: add(amax, t2, e), edge)
-    return out
+        sol.vary_t2 = True
+        sol.scan(lo, t2max, edge)
+    return sol.out
 
 
 def _emit_collect(sign: float, p0: float, segs: list):
