@@ -351,3 +351,36 @@ def test_set_directions_turns_a_mirrored_encoder_round(tmp_path):
         fixed.set_directions("r", output=-1)
     with pytest.raises(ValueError, match="-1"):
         fixed.set_directions("x", feedback=0)
+
+
+def test_every_trace_channel_of_the_line_and_masters_has_a_unit():
+    """Issue 16 (units on every trace channel): the material line takes [material] unit (or the
+    first axis' unit), a wheel master the line's, an axis master its axis', a virtual one its own."""
+    m = Machine.from_file(EXAMPLES / "flying_shear.toml")
+    units = m.trace.units() if callable(m.trace.units) else m.trace.units
+    assert units["material.position"] == "mm" and units["material.speed"] == "mm/s"
+    m = Machine.from_file(EXAMPLES / "cam_packaging.toml")  # knife in deg, the web in mm
+    units = m.trace.units() if callable(m.trace.units) else m.trace.units
+    assert units["material.speed"] == "mm/s" and units["wheel.velocity"] == "mm/s"
+    assert units["knife.command_velocity"] == "deg/s"
+    m = Machine.from_file(EXAMPLES / "cam_sync.toml")
+    units = m.trace.units() if callable(m.trace.units) else m.trace.units
+    assert units["line.velocity"] == "mm/s"
+
+
+def test_axis_plot_has_no_empty_panel_and_a_unit_on_each():
+    """Issue 16: the FS701 scope records no acceleration or jerk of the carriage: its plot has
+    position, velocity and following error only, each with its unit; the positioning example
+    (every channel recorded) keeps all five."""
+    from axisline.report.plots import axis_panels
+
+    for name, axis, labels in (("flying_shear.toml", "carriage", ["position", "velocity", "following error"]),
+                               ("positioning.toml", "x", ["position", "velocity", "acceleration", "jerk", "following error"])):
+        m = Machine.from_file(EXAMPLES / name)
+        for _ in range(20):
+            m.scheduler.run_cycle()
+        data = m.trace.data() if callable(m.trace.data) else m.trace.data
+        units = m.trace.units() if callable(m.trace.units) else m.trace.units
+        panels = axis_panels(data, units, axis)
+        assert [p[0] for p in panels] == labels
+        assert all(p[2] for p in panels)

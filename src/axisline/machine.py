@@ -323,19 +323,34 @@ class Machine:
 
     def _plant_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
         out: dict[str, tuple[Callable[[], Any], str, type]] = {}
+        axis_units = {a.name: a.unit for a in self.config.axis}
+        first = next(iter(axis_units.values()), "units")
+        line_unit = first
+        if self.config.material is not None and self.config.material.unit is not None:
+            line_unit = self.config.material.unit
         if self.material is not None:
             mat = self.material
-            out["material.position"] = (lambda: mat.position, "", float)
-            out["material.speed"] = (lambda: mat.velocity, "/s", float)
+            out["material.position"] = (lambda: mat.position, line_unit, float)
+            out["material.speed"] = (lambda: mat.velocity, f"{line_unit}/s", float)
         for name, sensor in self.sensors.items():
             out[f"{name}.state"] = (partial(_sensor_level, sensor), "", bool)
         for name in self.config.io.inputs:
             out[f"io.{name}"] = (partial(self.io.read, name), "", bool)
         for name in self.config.io.outputs:
             out[f"io.{name}"] = (partial(self.io.output, name), "", bool)
+        entries = {m.name: m for m in self.config.master}
         for name, master in self.masters.items():
-            out[f"{name}.position"] = (_getter(master, "position"), "", float)
-            out[f"{name}.velocity"] = (_getter(master, "velocity"), "/s", float)
+            entry = entries.get(name)
+            unit = "units"
+            if entry is not None:
+                if entry.unit is not None:
+                    unit = entry.unit
+                elif entry.axis is not None:
+                    unit = axis_units.get(entry.axis, unit)
+                elif entry.kind == "wheel":
+                    unit = axis_units.get(entry.carrier, line_unit) if entry.carrier is not None else line_unit
+            out[f"{name}.position"] = (_getter(master, "position"), unit, float)
+            out[f"{name}.velocity"] = (_getter(master, "velocity"), f"{unit}/s", float)
         return out
 
     def _make_trace(self) -> Trace:

@@ -54,6 +54,10 @@ class MasterEntry(BaseModel):
     carrier_slip: SlipConfig | None = Field(
         None, description="wheel with a carrier: how the material slips on the feed roll (seeded); none: it does not slip"
     )
+    unit: str | None = Field(
+        None, min_length=1, max_length=16,
+        description="the master's length unit (none: its axis' for axis masters, the material's for a wheel, 'units' otherwise)",
+    )
     velocity_filter: Literal["window", "first_order"] = Field("window", description="encoder masters: speed estimate")
     sampling_time: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: window length, s")
     time_constant: float | None = Field(None, gt=0.0, le=10.0, description="encoder masters: first-order filter, s")

@@ -213,6 +213,9 @@ class MaterialConfig(PlantModel):
 
     model_config = ConfigDict(extra="forbid")
 
+    unit: str | None = Field(
+        None, min_length=1, max_length=16, description="Length unit of the line (none: the first axis' unit)."
+    )
     speed: float = Field(
         0.0, ge=-_SPEED_LIMIT, le=_SPEED_LIMIT, description="Initial line speed, units/s."
     )

@@ -27,6 +27,18 @@ def axes_in(data: Mapping[str, np.ndarray]) -> list[str]:
     return names
 
 
+def axis_panels(data: Mapping[str, np.ndarray], units: Mapping[str, str], axis: str) -> list[tuple[str, list[str], str]]:
+    """The panels of `axis`' plot: (label, channels, unit), only those the scope recorded (an
+    FS701 trace has no jerk: no empty panel); the unit is the channels' own."""
+    out = []
+    for label, suffixes in _ROWS:
+        keys = [f"{axis}.{sfx}" for sfx in suffixes if f"{axis}.{sfx}" in data]
+        if keys:
+            unit = next((units[k] for k in keys if units.get(k)), "")
+            out.append((label, keys, unit))
+    return out
+
+
 def plot_trace(data: Mapping[str, np.ndarray], units: Mapping[str, str], out_dir: str | Path, title: str = "") -> list[Path]:
     """Write one PNG per axis into out_dir; returns the files written."""
     import matplotlib
@@ -39,14 +51,13 @@ def plot_trace(data: Mapping[str, np.ndarray], units: Mapping[str, str], out_dir
     t = np.asarray(data["t"])
     written = []
     for axis in axes_in(data):
-        fig, rows = plt.subplots(len(_ROWS), 1, sharex=True, figsize=(9, 10), constrained_layout=True)
-        for ax, (label, suffixes) in zip(rows, _ROWS):
-            unit = ""
-            for suffix in suffixes:
-                key = f"{axis}.{suffix}"
-                if key in data:
-                    ax.plot(t, data[key], label=suffix.replace("_", " "), linewidth=1.0)
-                    unit = units.get(key, unit)
+        panels = axis_panels(data, units, axis)
+        fig, rows = plt.subplots(len(panels), 1, sharex=True, figsize=(9, 2.0 * len(panels) + 0.6),
+                                 constrained_layout=True, squeeze=False)
+        rows = rows[:, 0]
+        for ax, (label, keys, unit) in zip(rows, panels):
+            for key in keys:
+                ax.plot(t, data[key], label=key.rpartition(".")[2].replace("_", " "), linewidth=1.0)
             ax.set_ylabel(f"{label}\n[{unit}]" if unit else label)
             ax.grid(True, alpha=0.3)
             if len(ax.get_lines()) > 1:
