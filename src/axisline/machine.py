@@ -596,6 +596,7 @@ class Machine:
                 "max_following_error": u.max_following_error,
                 "max_speed": u.max_speed,
                 "unit": u.config.unit,
+                "resolution": 1.0 / u.config.counts_per_unit,  # one count: what a position means
                 "error_id": ax.error_id,
                 "error_text": ax.error_text,
             }

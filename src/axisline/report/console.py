@@ -13,6 +13,8 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from .markdown import _fmt
+
 __all__ = ["print_summary"]
 
 
@@ -24,7 +26,8 @@ def print_summary(s: dict, job_steps: int, personality: str | None, out: Console
     for col in ("axis", "state", "position", "max following error", "max speed"):
         t.add_column(col)
     for name, a in s["axes"].items():
-        t.add_row(name, a["state"], f"{a['position']:.4f} {a['unit']}", f"{a['max_following_error']:.4g} {a['unit']}", f"{a['max_speed']:.4g} {a['unit']}/s")
+        u, res = a["unit"], a.get("resolution")
+        t.add_row(name, a["state"], _fmt(a["position"], u, res), _fmt(a["max_following_error"], u, res), _fmt(a["max_speed"], f"{u}/s", res))
     out.print(t)
     job = s["job"]
     device = s.get("device")

@@ -2,12 +2,28 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
 
-def _fmt(x: Any, unit: str = "") -> str:
+def decimals(resolution: float | None) -> int:
+    """Decimal places that show one count of `resolution` (and one digit below it)."""
+    if not resolution or resolution <= 0.0 or not math.isfinite(resolution):
+        return 6
+    return max(0, min(9, math.ceil(-math.log10(resolution) - 1e-9) + 1))
+
+
+def _fmt(x: Any, unit: str = "", resolution: float | None = None) -> str:
+    """A number rounded to what it means: to a tenth of a count when the axis' resolution is
+    known (no 2.7e-12 deg of rounding noise), else 6 significant digits."""
     if isinstance(x, float):
+        if resolution is not None:
+            d = decimals(resolution)
+            text = f"{x:.{d}f}"
+            if float(text) == 0.0:
+                text = "0"  # (no "-0.0000")
+            return f"{text} {unit}".strip()
         return f"{x:.6g} {unit}".strip()
     return f"{x} {unit}".strip()
 
@@ -31,11 +47,11 @@ def write_report(summary: dict[str, Any], out_dir: str | Path, plots: list[Path]
         "|---|---|---|---|---|---|---|",
     ]
     for name, a in s["axes"].items():
-        u = a["unit"]
+        u, res = a["unit"], a.get("resolution")
         err = f"{a['error_id']}: {a['error_text']}" if a["error_id"] else ""
         lines.append(
-            f"| {name} | {a['state']} | {_fmt(a['position'], u)} | {_fmt(a['following_error'], u)} | "
-            f"{_fmt(a['max_following_error'], u)} | {_fmt(a['max_speed'], u + '/s')} | {err} |"
+            f"| {name} | {a['state']} | {_fmt(a['position'], u, res)} | {_fmt(a['following_error'], u, res)} | "
+            f"{_fmt(a['max_following_error'], u, res)} | {_fmt(a['max_speed'], u + '/s', res)} | {err} |"
         )
     lines += ["", "## Faults", ""]
     lines += [f"- {f}" for f in s["faults"]] or ["none"]

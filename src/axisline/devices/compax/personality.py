@@ -794,7 +794,7 @@ class CompaxPersonality(Personality):
         lines = ["## COMPAX label synchronisation", "",
                  f"- label synchronisation: {label.get('mode')}, {label.get('cycles_with_label')} master cycles with a label",
                  f"- converged (|error| <= {label.get('tolerance_per_mille')} ‰) from master cycle {label.get('converged_from_cycle')}",
-                 f"- last label error: {label.get('last_error_per_mille')} ‰", "",
+                 f"- last label error: {_per_mille(label.get('last_error_per_mille'))} ‰", "",
                  "Per master cycle (label value, error before and after correction, tracking error, O15/O16): `compax_cycles.json`.", ""]
         lines += [f"![{p.stem}]({p.name})" for p in plots]
         return "\n".join(lines) + "\n"
@@ -806,3 +806,8 @@ class CompaxPersonality(Personality):
         title = f"{self.machine.config.machine.name} (COMPAX, slave {self.config.slave})"
         return write_report(self.log.records, out_dir, status=self.status_values(), title=title, window=window,
                             tracking_limit=float(param(self.params, 79)))
+
+
+def _per_mille(x: Any) -> str:
+    """A label error in ‰ to a tenth, like the tolerance beside it (not 16 digits of noise)."""
+    return "-" if x is None else f"{x:.1f}"

@@ -1,0 +1,36 @@
+"""Numbers in run reports are rounded to what they mean (issue 16): positions to the axis'
+resolution, no rounding noise like 2.72848e-12 deg."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from axisline.machine import Machine
+from axisline.report.markdown import _fmt, decimals, write_report
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def test_decimals_show_a_tenth_of_a_count():
+    assert decimals(1 / 2000) == 5  # 0.0005 mm per count -> 0.00050
+    assert decimals(1 / 1000) == 4
+    assert decimals(0.01) == 3
+    assert decimals(None) == 6
+
+
+def test_rounding_noise_reads_zero_and_no_negative_zero():
+    assert _fmt(-5.45697e-12, "deg", 1 / 1000) == "0 deg"
+    assert _fmt(2.72848e-12, "deg", 1 / 1000) == "0 deg"
+    assert _fmt(30.00093, "deg", 1 / 1000) == "30.0009 deg"
+    assert _fmt(1.5, "mm") == "1.5 mm"  # resolution unknown: 6 significant digits
+
+
+def test_report_of_the_cam_packaging_example_has_no_exponent(tmp_path):
+    m = Machine.from_file(EXAMPLES / "cam_packaging.toml", seed=None)
+    result = m.run()
+    summary = m.summary(result)
+    path = write_report(summary, tmp_path, [])
+    text = path.read_text()
+    axes = text[text.index("## Axes"):text.index("## Faults")]
+    assert "e-" not in axes and "e+" not in axes
+    assert all("resolution" in a for a in summary["axes"].values())
