@@ -98,3 +98,28 @@ def test_serve_offers_only_modbus(endpoint):
     )
     assert res.returncode == 2 and endpoint in res.stderr + res.stdout
 
+
+
+def test_serve_says_on_the_console_when_the_watchdog_trips_and_does_not_run_the_script():
+    import time
+
+    proc = _serve("--allow-writes")
+    try:
+        port = _modbus_port(proc)
+        c = ModbusTcpClient("127.0.0.1", port=port, timeout=3)
+        assert c.connect()
+        try:
+            assert not c.write_registers(0, [0, 0, 0, 0, 0, 0x0300]).isError()  # Enable, Stop2_N: one write, as mbpoll
+            time.sleep(0.6)  # then nothing: the 100 ms watchdog expires
+            assert c.read_holding_registers(0x1006, count=1).registers == [2]
+        finally:
+            c.close()
+        out, err = _stop(proc)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 0, err
+    said = " ".join(err.split())
+    assert "wago672: the [[device.plc]] script (16 steps) is not run by serve: the Modbus client is the PLC" in said
+    assert said.count("wago672: fieldbus watchdog expired") == 1
+    assert "(watchdog_ms = 100); module 0 (axis x) brakes with the STOP ramp" in said

@@ -7,7 +7,10 @@ Modules: image (12-byte process image), config_table (512-byte configuration), u
 errors (error table, error memory, LED blink code), bits (bit field seam), trajectory (ramp
 types on the kernel's profile generator), referencing (reference runs), thermal (current phases,
 overcurrent model), device (the module: handshakes, modes, move commands; its docstring lists
-the decisions taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points).
+the decisions taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points). Around the
+module: coupler (Modbus register map, watchdog), personality (the machine file's [device]),
+plc (the [[device.plc]] script that stands in for the PLC in `axisline run`), runreport (the
+run's headline and report section), client (the PLC side over Modbus).
 """
 
 from axisline.devices.wago672.bits import Bit, BitTable

@@ -9,7 +9,7 @@ takes 6 input and 6 output registers, module n's registers follow module n-1's.
     0x0000 + 6n + k    6, 16     output image of module n, register k (write)
     0x0200 + 6n + k    3, 4      output image of module n, read back
     0x1000             3, 4      watchdog time [ms] (read only; set in the machine file)
-    0x1006             3, 4      watchdog status: 0 not started, 1 running, 2 expired
+    0x1006             3, 4      watchdog status: 0 not started (or off), 1 running, 2 expired
 
 Register k holds byte 2k of the module image in its low byte and byte 2k+1 in its high byte
 (the byte order of the module's little-endian fields is kept, so the 24-bit position D4..D6 =
@@ -39,6 +39,14 @@ which switches the output stage off without a ramp (manual §3.7.2: "the drive c
 stop. When closing down with a stop ramp, Stop2_N must be used"). The issue asks for a stop
 with the stop ramp, so the coupler keeps Enable for the time of the ramp (step 1) and clears
 it at standstill (step 2): the end state is the coupler's, the way there is the ramp's.
+
+[Decision W2] Watchdog time 0 switches the watchdog off (as on a WAGO coupler, whose watchdog
+time 0 means no watchdog): writes never arm it, the status stays 0, nothing stops the motors -
+for hand tools (mbpoll, a Modbus client typed at) that write once and then read; 1 .. 9 ms is
+refused in the machine file (shorter than a request's round trip). `on_expiry(cycle, ticks)`
+is told of each expiry: the personality prints one line on the console (test_plc_script.py
+test_watchdog_off_a_hand_tool_may_write_once_and_the_move_completes,
+test_watchdog_on_trips_and_says_so_once_naming_the_module_and_the_time).
 
 A client that disconnects: the Modbus server cannot tell the device a connection closed, and
 a PLC may reconnect on purpose. The watchdog covers it: no writes, so after the watchdog time
@@ -122,17 +130,20 @@ class Coupler:
         *,
         tick_s: float = 0.001,
         writes_allowed: Callable[[], bool] | None = None,
+        on_expiry: Callable[[int, int], None] | None = None,
     ) -> None:
         if not 1 <= len(modules) <= MAX_MODULES:
             raise ValueError(f"a coupler takes 1 .. {MAX_MODULES} modules, got {len(modules)}")
-        if isinstance(watchdog_ms, bool) or not isinstance(watchdog_ms, int) or watchdog_ms < 1:
-            raise ValueError(f"watchdog_ms must be an integer >= 1, got {watchdog_ms!r}")
+        if isinstance(watchdog_ms, bool) or not isinstance(watchdog_ms, int) or watchdog_ms < 0:
+            raise ValueError(f"watchdog_ms must be an integer >= 0 (0: off), got {watchdog_ms!r}")
         self.modules = list(modules)
         self.watchdog_ms = watchdog_ms
         self.tick_s = tick_s
         #: ticks without a write after which the watchdog expires (more than watchdog_ms)
         self.watchdog_cycles = max(1, math.ceil(watchdog_ms / (tick_s * 1000.0) - 1e-9))
         self._writes_allowed = writes_allowed
+        #: called as on_expiry(cycle, ticks since the last write) when the watchdog expires
+        self.on_expiry = on_expiry
         self._network_writes = False
         n = len(self.modules)
         self._out = [bytearray(IMAGE_SIZE) for _ in range(n)]  # what the PLC wrote
@@ -239,7 +250,8 @@ class Coupler:
         for i, b in enumerate(data):
             k = first + i
             self._out[k // IMAGE_SIZE][k % IMAGE_SIZE] = b
-        self.watchdog_status = WD_RUNNING
+        if self.watchdog_ms:  # watchdog_ms 0: off, never armed (status stays 0)
+            self.watchdog_status = WD_RUNNING
         self.since_write = 0
         self.writes += 1
 
@@ -282,6 +294,8 @@ class Coupler:
         for n in range(len(self.modules)):
             self._out[n][:] = bytes(IMAGE_SIZE)
             self._failsafe[n] = _STOPPING
+        if self.on_expiry is not None:
+            self.on_expiry(cycle, self.since_write)
 
     def stop_modules(self) -> None:
         """Shutdown of the simulation (serve stopped): every module brakes as on a watchdog expiry."""
@@ -304,7 +318,7 @@ class Coupler:
             "registers_per_module": REGISTERS_PER_MODULE,
             "modules": len(self.modules),
             "watchdog_ms": self.watchdog_ms,
-            "watchdog_status": ("not started", "running", "expired")[self.watchdog_status],
+            "watchdog_status": "off" if not self.watchdog_ms else ("not started", "running", "expired")[self.watchdog_status],
             "watchdog_expiries": self.expiries,
             "reads": self.reads,
             "writes": self.writes,

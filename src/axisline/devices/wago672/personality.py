@@ -5,7 +5,7 @@
     personality = "wago672"
 
     [device]
-    watchdog_ms = 100               # the coupler's fieldbus watchdog
+    watchdog_ms = 100               # the coupler's fieldbus watchdog (0: off, for hand tools)
 
     [[device.modules]]              # one table per module, in K-bus order
     axis = "x"                      # a stepper axis of this machine file
@@ -32,6 +32,12 @@ The module's axis: a stepper drive with 64 microsteps per full step (the 750-672
 counts microsteps: its positions are microsteps unless Pos_Mult/Pos_Div scale them). The axis
 belongs to the module: job steps must not command it.
 
+`[[device.plc]]` (optional): a scripted PLC for `axisline run` - steps that set and clear
+control bits, write set points and wait for status bits of the process image (plc.py). It is
+the stand-in for the PLC that `serve` gets from the network: `serve` does not run it (one
+master on the image). With a script the run ends when the script is done (`finished`), and
+the summary's headline says what the PLC did.
+
 Each cycle (LOGIC stage, before the axes sample their set points in SETPOINTS) the coupler
 exchanges the process images with the modules and runs their 1 ms ticks (coupler.py). The
 Modbus endpoint is the coupler: docs/wago672-modbus.md has the register map.
@@ -39,18 +45,22 @@ Modbus endpoint is the coupler: docs/wago672-modbus.md has the register map.
 
 from __future__ import annotations
 
+import sys
+from functools import partial
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, StringConstraints
+from pydantic import BaseModel, ConfigDict, Field, StringConstraints, field_validator
 
 from axisline.configerrors import ConfigError, FilePath
 from axisline.devices.base import Personality
 from axisline.devices.wago672.config_table import ConfigTable, ConfigValueError
 from axisline.devices.wago672.coupler import MAX_MODULES, Coupler
 from axisline.devices.wago672.device import Wago672
-from axisline.devices.wago672.image import MODE_NAMES, InputImage
+from axisline.devices.wago672.image import MODE_NAMES, OFFSET_C1, OFFSET_C2, InputImage
 from axisline.devices.wago672.mailbox import attach
+from axisline.devices.wago672.plc import PlcScript, PlcStep, error_text
+from axisline.devices.wago672.runreport import headline, report_section
 from axisline.kernel.atomic import unwritable_reason
 
 __all__ = ["ModuleEntry", "Wago672Config", "Wago672Personality"]
@@ -87,7 +97,21 @@ class Wago672Config(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     modules: list[ModuleEntry] = Field(min_length=1, max_length=MAX_MODULES, description="the 750-672 modules in K-bus order")
-    watchdog_ms: int = Field(100, ge=10, le=60000, description="fieldbus watchdog: no write for longer stops the motors")
+    watchdog_ms: int = Field(
+        100, ge=0, le=60000,
+        description="fieldbus watchdog, ms: no write for longer stops the motors; 0 switches it off (hand tools); else 10 .. 60000",
+    )
+    plc: list[PlcStep] = Field(
+        default_factory=list, max_length=10000,
+        description="a scripted PLC for `axisline run`: steps on the process image (not run by serve)",
+    )
+
+    @field_validator("watchdog_ms")
+    @classmethod
+    def _watchdog(cls, v: int) -> int:
+        if 0 < v < 10:
+            raise ValueError(f"{v} ms is shorter than a Modbus request round trip: give 0 (off) or 10 .. 60000")
+        return v
 
 
 class _Module:
@@ -169,6 +193,12 @@ class Wago672Personality(Personality):
                 problems.append(f"{where}.eeprom = {entry.eeprom!r}: {e}")
                 continue
             self.modules.append(_Module(i, entry.axis, device, wiring, dict(entry.outputs), mbx))
+        for k, plc_step in enumerate(config.plc):
+            if plc_step.module >= len(config.modules):
+                problems.append(
+                    f"device.plc[{k}].module = {plc_step.module} ({plc_step.label(k)}): no such module "
+                    f"(allowed: 0 .. {len(config.modules) - 1}, the device.modules tables)"
+                )
         for k, step in enumerate(mc.job.steps):
             if step.command is not None and step.axis in used:
                 problems.append(f"job.steps[{k}].axis = {step.axis!r}: the axis is driven by the 750-672 of device.modules[{used[step.axis]}]")
@@ -179,7 +209,19 @@ class Wago672Personality(Personality):
             config.watchdog_ms,
             tick_s=machine.period,
             writes_allowed=lambda: self.network_writes,
+            on_expiry=self._watchdog_expired,
         )
+        #: where console lines go (the watchdog's expiry, the script not run by serve)
+        self.notify = _stderr
+        self.script: PlcScript | None = None
+        if config.plc:
+            if _wall_clock(machine):  # `serve`: the network's PLC is the only master (plc.py, decision 3)
+                self.notify(f"wago672: the [[device.plc]] script ({len(config.plc)} steps) is not run by serve: "
+                            "the Modbus client is the PLC")
+            else:
+                self.script = PlcScript(config.plc, self.coupler, machine.period,
+                                        error_text=lambda n: error_text(self.modules[n].device))
+        self._failure_reported = False
         self._outputs = tuple((m.device, name, io_name) for m in self.modules for name, io_name in m.outputs.items())
 
     @staticmethod
@@ -205,11 +247,41 @@ class Wago672Personality(Personality):
     # ------------------------------------------------------------------ Personality
 
     def tick(self, cycle: int) -> None:
+        script = self.script
+        if script is not None:  # the PLC's cycle: read the last inputs, write the outputs
+            script.tick(cycle)
+            if script.failed is not None and not self._failure_reported:
+                self._failure_reported = True
+                self.machine.faults.append(f"t={cycle * self.machine.period:.3f} s wago672: {script.failed}")
         self.coupler.tick(cycle)
         if self._outputs:
             io = self.machine.io
             for dev, name, io_name in self._outputs:
                 io.write(io_name, dev.outputs[0 if name == "Output1" else 1])
+
+    def _watchdog_expired(self, cycle: int, ticks: int) -> None:
+        axes = ", ".join(f"module {m.index} (axis {m.axis})" for m in self.modules)
+        self.notify(
+            f"wago672: fieldbus watchdog expired at t={cycle * self.machine.period:.3f} s: no write for "
+            f"{ticks * self.machine.period * 1000:.0f} ms (watchdog_ms = {self.coupler.watchdog_ms}); {axes} "
+            f"{'brakes' if len(self.modules) == 1 else 'brake'} with the STOP ramp, then its outputs are 0; "
+            "the next write re-arms it ([device] watchdog_ms = 0: off)"
+        )
+
+    @property
+    def finished(self) -> bool | None:  # type: ignore[override]  # (Personality: a plain attribute)
+        """The PLC script: None without one, else whether it is done (or failed)."""
+        return None if self.script is None else self.script.done
+
+    def trace_channels(self) -> dict[str, tuple[Any, str, type]]:
+        """Each module's status bytes S1, S2 (as the PLC reads them) and the PLC script's step."""
+        out: dict[str, tuple[Any, str, type]] = {}
+        for m in self.modules:
+            for name, offset in (("S1", OFFSET_C1), ("S2", OFFSET_C2)):
+                out[f"wago672.m{m.index}.{name}"] = (partial(_status_byte, self.coupler, m.index, offset), "", int)
+        if self.script is not None:
+            out["wago672.plc_step"] = (partial(_plc_step, self.script), "", int)
+        return out
 
     def register_endpoint(self) -> Coupler:
         return self.coupler
@@ -256,4 +328,38 @@ class Wago672Personality(Personality):
                 "reference_ok": dev.reference_ok,
                 "status": {"S0": image.s0, "S1": image.s1, "S2": image.s2, "S3": image.s3},
             })
-        return {"coupler": self.coupler.summary(), "modules": modules}
+        out: dict[str, Any] = {"coupler": self.coupler.summary(), "modules": modules}
+        for entry, m in zip(modules, self.modules):
+            unit = self.machine.units[m.axis]
+            entry["axis_position"] = unit.axis.actual_position
+            entry["unit"] = unit.config.unit
+        s = self.script
+        out["plc"] = None if s is None else {
+            "steps": len(s.steps), "done": s.steps_done, "failed": s.failed, "failure": s.failure, "log": list(s.log),
+        }
+        out["plc_configured"] = len(self.config.plc)
+        out["headline"] = headline(out)
+        return out
+
+    def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
+        return report_section(device_summary)
+
+
+def _status_byte(coupler: Coupler, module: int, offset: int) -> int:
+    return coupler.inputs(module)[offset]
+
+
+def _plc_step(script: PlcScript) -> int:
+    """The step running, 1-based; 0 once the script is done or failed."""
+    return 0 if script.done else script.index + 1
+
+
+def _stderr(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
+def _wall_clock(machine: Any) -> bool:
+    """Runs on the wall clock (`axisline serve`), not the simulated one (`run`, tests)."""
+    from axisline.kernel.clock import WallClock
+
+    return isinstance(getattr(machine, "clock", None), WallClock)
