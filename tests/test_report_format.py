@@ -34,3 +34,15 @@ def test_report_of_the_cam_packaging_example_has_no_exponent(tmp_path):
     axes = text[text.index("## Axes"):text.index("## Faults")]
     assert "e-" not in axes and "e+" not in axes
     assert all("resolution" in a for a in summary["axes"].values())
+
+
+def test_a_device_driven_run_has_no_empty_job_line(tmp_path):
+    """Issue 16: the WAGO example is driven by its scripted PLC, not the machine file's job:
+    the report says so instead of "finished, 0 round(s)"."""
+    m = Machine.from_file(EXAMPLES / "wago_stepper.toml")
+    summary = m.summary(m.run())
+    text = write_report(summary, tmp_path, []).read_text()
+    assert "0 round(s)" not in text and "the device drove the machine" in text
+    m = Machine.from_file(EXAMPLES / "positioning.toml")  # a job of its own: its line stays
+    text = write_report(m.summary(m.run()), tmp_path, []).read_text()
+    assert "round(s)" in text

@@ -612,6 +612,7 @@ class Machine:
             "completed": result.completed,
             "faults": result.faults,
             "job": {
+                "steps": len(self.config.job.steps),
                 "finished": self.job.finished,
                 "failed": self.job.failed,
                 "rounds": self.job.round,

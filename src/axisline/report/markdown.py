@@ -56,7 +56,10 @@ def write_report(summary: dict[str, Any], out_dir: str | Path, plots: list[Path]
     lines += ["", "## Faults", ""]
     lines += [f"- {f}" for f in s["faults"]] or ["none"]
     job = s["job"]
-    lines += ["", "## Job", "", f"{'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s)", ""]
+    if job.get("steps", 1) or job["events"] or job.get("failed"):
+        lines += ["", "## Job", "", f"{'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s)", ""]
+    elif s.get("device") is not None:  # the personality drove the machine: its section says what happened
+        lines += ["", "## Job", "", "none: the device drove the machine (its section below)", ""]
     if job["events"]:
         lines += ["| t [s] | step | command |", "|---|---|---|"]
         lines += [f"| {e['t']:.4f} | {e['step']} | {e['text']} |" for e in job["events"]]
