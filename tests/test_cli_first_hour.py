@@ -284,3 +284,12 @@ def test_check_names_the_axis_by_its_name(tmp_path):
     res = runner.invoke(app, ["check", str(f)])
     assert res.exit_code == 2
     assert "axis[0].amax: unknown key (axis 'x'); did you mean a_max?" in res.output
+
+
+def test_check_names_what_drives_the_machine():
+    """Issue 16: `check` of a device-driven example says which personality drives it, not
+    "job of 0 steps"; a file with a job keeps its step count."""
+    res = runner.invoke(app, ["check", str(EXAMPLES / "wago_stepper.toml")])
+    assert res.exit_code == 0 and "driven by the wago672 personality" in " ".join(res.output.split())
+    res = runner.invoke(app, ["check", str(EXAMPLES / "positioning.toml")])
+    assert res.exit_code == 0 and "job of 10 steps" in res.output

@@ -208,7 +208,10 @@ def _insert_device_section(path: Path, section: str) -> None:
 def check(machine: Path = typer.Argument(..., help="machine file (TOML)")) -> None:
     """Validate a machine file: exit 0 if it is usable, 2 with the bad keys named."""
     m = _load(machine)
-    out.print(f"{escape(str(machine))}: OK ({len(m.units)} axes, cycle {m.clock.period_us} us, job of {len(m.config.job.steps)} steps)")
+    steps = len(m.config.job.steps)
+    driver = (f"job of {steps} steps" if steps or m.device is None
+              else f"driven by the {m.config.machine.personality} personality")
+    out.print(f"{escape(str(machine))}: OK ({len(m.units)} axes, cycle {m.clock.period_us} us, {driver})")
 
 
 @app.command()
