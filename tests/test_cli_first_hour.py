@@ -292,4 +292,4 @@ def test_check_names_what_drives_the_machine():
     res = runner.invoke(app, ["check", str(EXAMPLES / "wago_stepper.toml")])
     assert res.exit_code == 0 and "driven by the wago672 personality" in " ".join(res.output.split())
     res = runner.invoke(app, ["check", str(EXAMPLES / "positioning.toml")])
-    assert res.exit_code == 0 and "job of 10 steps" in res.output
+    assert res.exit_code == 0 and "job of 10 steps" in " ".join(res.output.split())
