@@ -46,3 +46,19 @@ def test_a_device_driven_run_has_no_empty_job_line(tmp_path):
     m = Machine.from_file(EXAMPLES / "positioning.toml")  # a job of its own: its line stays
     text = write_report(m.summary(m.run()), tmp_path, []).read_text()
     assert "round(s)" in text
+
+
+def test_warnings_name_a_saturated_drive_and_an_unlimited_stroke(tmp_path):
+    """Issue 16: the print-mark example's return stroke holds the FS701's command at the +-10 V
+    limit (19 mm following error) and its carriage has no stroke limit: both are warnings of the
+    run summary and the report; the positioning example (software limits, no saturation) has none."""
+    m = Machine.from_file(EXAMPLES / "flying_shear_printmark.toml")
+    summary = m.summary(m.run())
+    warnings = summary["warnings"]
+    saturated = [w for w in warnings if "saturated" in w]
+    assert len(saturated) == 1 and "axis 'carriage'" in saturated[0] and "+-10 V" in saturated[0]
+    assert any("no stroke limit" in w and "axis 'carriage'" in w for w in warnings)
+    text = write_report(summary, tmp_path, []).read_text()
+    assert "## Warnings" in text and "saturated" in text
+    m = Machine.from_file(EXAMPLES / "positioning.toml")
+    assert m.summary(m.run())["warnings"] == []

@@ -36,7 +36,7 @@ from .motion.camsync import CamFollower, CamState
 from .motion.gear import Gear, GearInPos
 from .motion.homing import DirectHoming, SwitchHoming
 from .sync_setup import SyncHandle, build_cam, build_master
-from .plant.drives import StepperDrive
+from .plant.drives import ANALOG_LIMIT_VOLTS, StepperDrive
 
 _ERROR_STOP = AxisState.ERROR_STOP
 _DISABLED = AxisState.DISABLED
@@ -66,15 +66,35 @@ class AxisUnit:
     #: (Machine.set_directions): -1 turns a miswired encoder or command output round
     feedback_sign: float = 1.0
     output_sign: float = 1.0
+    #: what a commissioning engineer must see (Machine.warnings): cycles whose command the drive
+    #: could not follow (+-10 V or its speed limit), the largest speed asked, the travel range
+    over_cycles: int = 0
+    peak_request: float = 0.0
+    first_over_cycle: int = -1
+    travel_low: float = math.inf
+    reach: float = math.inf  # the fastest the drive goes (its speed limit, or +-10 V on the analog input)
+    travel_high: float = -math.inf
 
     def __post_init__(self) -> None:
         self._unit_per_count = 1.0 / self.encoder.counts_per_unit if self.encoder is not None else 0.0
 
     def sample(self, cycle: int) -> None:
         if self.encoder is not None:
-            self.actual_position = self.encoder.sample() * self._unit_per_count * self.feedback_sign
+            x = self.actual_position = self.encoder.sample() * self._unit_per_count * self.feedback_sign
         else:
-            self.actual_position = self.drive.position * self.feedback_sign
+            x = self.actual_position = self.drive.position * self.feedback_sign
+        if x < self.travel_low:
+            self.travel_low = x
+        if x > self.travel_high:
+            self.travel_high = x
+
+    def note_over(self, cycle: int, requested: float) -> None:
+        """A cycle whose command the drive cannot follow (`requested` units/s)."""
+        self.over_cycles += 1
+        if self.first_over_cycle < 0:
+            self.first_over_cycle = cycle
+        if abs(requested) > abs(self.peak_request):
+            self.peak_request = requested
 
     def loop(self, cycle: int) -> None:
         drive = self.drive
@@ -251,6 +271,10 @@ class Machine:
         stepper = isinstance(drive, StepperDrive)
         analog = not stepper and unit.config.drive.command == "analog"
         volts_per_velocity = 1.0 / drive.velocity_per_volt if analog else 0.0
+        velocity_per_volt = drive.velocity_per_volt if analog else 0.0
+        top = math.inf if stepper else drive.max_velocity
+        reach = min(top, ANALOG_LIMIT_VOLTS * velocity_per_volt) if analog else top
+        unit.reach = reach
 
         def actuate(cycle: int) -> None:
             if (axis.state is not _DISABLED) is not drive.enabled:
@@ -258,15 +282,20 @@ class Machine:
             if analog:
                 # the classic +-10 V interface: the amplifier's offset, drift and gain errors
                 # apply; a device's analogue output (Machine.drive_by) or the axis' loop output
-                if unit.controller_volts:
-                    drive.command_voltage(unit.command_volts)
-                else:
-                    drive.command_voltage(unit.velocity_output * volts_per_velocity)
+                u = unit.command_volts if unit.controller_volts else unit.velocity_output * volts_per_velocity
+                drive.command_voltage(u)
+                asked = u * velocity_per_volt  # nominal units/s
+                # at or beyond +-10 V (a controller clips its own output there) or the speed limit
+                if drive.saturated or u >= ANALOG_LIMIT_VOLTS or u <= -ANALOG_LIMIT_VOLTS or asked > reach or asked < -reach:
+                    unit.note_over(cycle, asked)
             elif stepper:
                 # open loop: the pulse output follows the set point, the motor follows the pulses
                 drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
             else:
-                drive.command_velocity(unit.velocity_output)
+                v = unit.velocity_output
+                drive.command_velocity(v)
+                if v > drive.max_velocity or v < -drive.max_velocity:
+                    unit.note_over(cycle, v)
             step(dt)
 
         return actuate
@@ -583,6 +612,27 @@ class Machine:
 
     # -- reporting ----------------------------------------------------------------------
 
+    def warnings(self) -> list[str]:
+        """What a commissioning engineer must see after a run: a drive asked for more than it
+        can do (the +-10 V command saturated, or beyond its speed limit), and linear axes with
+        no stroke limit, with the travel they made."""
+        out = []
+        for name, u in self.units.items():
+            unit = u.config.unit
+            if u.over_cycles:
+                asked = (f"asked {u.peak_request:.6g} {unit}/s of a drive that reaches {u.reach:.6g} {unit}/s"
+                         if abs(u.peak_request) > u.reach * (1.0 + 1e-9) else
+                         f"held at the +-10 V limit ({u.peak_request:.6g} {unit}/s nominal): the loop wanted more than the drive gives")
+                out.append(
+                    f"axis {name!r}: the drive command saturated in {u.over_cycles} cycle(s) ({u.over_cycles * self.period:.3f} s, "
+                    f"first at t = {u.first_over_cycle * self.period:.3f} s): {asked}; max following error "
+                    f"{u.max_following_error:.4g} {unit}"
+                )
+            travel = _travel_warning(name, u)
+            if travel is not None:
+                out.append(travel)
+        return out
+
     def summary(self, result: RunResult) -> dict[str, Any]:
         axes = {}
         for name, u in self.units.items():
@@ -619,9 +669,21 @@ class Machine:
                 "events": [{"t": e.t, "step": e.step + 1, "text": e.text} for e in self.job.events],
             },
             "axes": axes,
+            "warnings": self.warnings(),
             "trace": {"samples": len(self.trace), "channels": list(self.trace.channels)} if self.trace else None,
             "device": self.device.summary() if self.device is not None else None,
         }
+
+
+def _travel_warning(name: str, u: AxisUnit) -> str | None:
+    """A linear axis without a stroke limit (no software limits, no limit switch): its travel."""
+    c = u.config
+    if c.kind != "linear" or c.sw_limits_enabled or any(sw.kind == "limit" for sw in c.switches):
+        return None
+    if not u.travel_high >= u.travel_low:
+        return None
+    return (f"axis {name!r} travelled {u.travel_low:.6g} .. {u.travel_high:.6g} {c.unit} with no stroke limit "
+            f"(sw_limits_enabled = false, no limit switch): check that the mechanics allow it")
 
 
 def _getter(obj: Any, name: str) -> Callable[[], Any]:

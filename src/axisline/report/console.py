@@ -29,6 +29,8 @@ def print_summary(s: dict, job_steps: int, personality: str | None, out: Console
         u, res = a["unit"], a.get("resolution")
         t.add_row(name, a["state"], _fmt(a["position"], u, res), _fmt(a["max_following_error"], u, res), _fmt(a["max_speed"], f"{u}/s", res))
     out.print(t)
+    for warning in s.get("warnings") or ():
+        out.print(f"[yellow]warning:[/yellow] {escape(warning)}")
     job = s["job"]
     device = s.get("device")
     if job_steps or job.get("failed"):

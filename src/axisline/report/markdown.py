@@ -55,6 +55,9 @@ def write_report(summary: dict[str, Any], out_dir: str | Path, plots: list[Path]
         )
     lines += ["", "## Faults", ""]
     lines += [f"- {f}" for f in s["faults"]] or ["none"]
+    if s.get("warnings"):  # what a commissioning engineer must see (Machine.warnings)
+        lines += ["", "## Warnings", ""]
+        lines += [f"- {w}" for w in s["warnings"]]
     job = s["job"]
     if job.get("steps", 1) or job["events"] or job.get("failed"):
         lines += ["", "## Job", "", f"{'finished' if job['finished'] else 'not finished'}, {job['rounds']} round(s)", ""]
