@@ -279,7 +279,8 @@ def cam(
     out.print(t)
     out.print(f"largest master speed within the limits: {r.max_master_speed:.6g}/s")
     if plot_file is not None:
-        plot_cam(curve, master_speed, plot_file, title=f"cam {name}")
+        unit = m.units[axis].config.unit if axis is not None else ""
+        plot_cam(curve, master_speed, plot_file, title=f"cam {name}", limits=limits, unit=unit)
         out.print(str(plot_file), markup=False, highlight=False)
     raise typer.Exit(0 if r.within_limits else 1)
 

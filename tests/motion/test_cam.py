@@ -410,6 +410,15 @@ def test_plot_writes_a_png(tmp_path: Path) -> None:
     assert sorted(os.listdir(tmp_path)) == ["cam.png"]  # no temporary file left behind
 
 
+def test_plot_draws_the_axis_limits_and_units(tmp_path: Path) -> None:
+    """Issue 16: the cam plot shows the slave axis' limits (dashed, +-) on the velocity,
+    acceleration and jerk panels, and the slave's unit on every panel."""
+    panels = plot_cam(_sine_spline(), master_speed=360.0, path=tmp_path / "cam.png",
+                      limits={"v_max": 500.0, "a_max": 2e4, "j_max": None}, unit="mm")
+    assert [limit for _, limit in panels] == [None, 500.0, 2e4, None]
+    assert all("[mm" in label for label, _ in panels)
+
+
 # ---------------------------------------------------------------------------------------
 # CSV
 

@@ -936,10 +936,15 @@ def plot_cam(
     n: int = 1001,
     title: str | None = None,
     jerk: bool = True,
-) -> None:
+    limits: dict[str, float | None] | None = None,
+    unit: str = "",
+) -> list[tuple[str, float | None]]:
     """Slave position, velocity, acceleration (and jerk) over one master cycle, as a PNG.
 
-    Velocity and the rest are in time units at the constant ``master_speed``. Drawn with
+    Velocity and the rest are in time units at the constant ``master_speed``; ``limits``
+    (``v_max``, ``a_max``, ``j_max`` of the slave axis) are drawn as dashed lines at +-limit on
+    their panels, ``unit`` (the slave's) labels the axes; returns the panels drawn as (label,
+    limit). Drawn with
     matplotlib's Agg canvas directly (no pyplot, no global backend switch); the file is
     written atomically.
     """
@@ -949,19 +954,26 @@ def plot_cam(
     vm = float(master_speed)
     x = _sample_positions(curve, n)
     s, ds, dds, ddds = (np.asarray(arr, dtype=float) for arr in curve.eval_array(x))
-    rows: list[tuple[str, np.ndarray]] = [
-        ("slave position", s),
-        ("slave velocity /s", ds * vm),
-        ("slave acceleration /s²", dds * vm * vm),
+    u = unit or "units"
+    lim = limits or {}
+    rows: list[tuple[str, np.ndarray, float | None]] = [
+        (f"slave position\n[{u}]", s, None),
+        (f"slave velocity\n[{u}/s]", ds * vm, lim.get("v_max")),
+        (f"slave acceleration\n[{u}/s²]", dds * vm * vm, lim.get("a_max")),
     ]
     if jerk:
-        rows.append(("slave jerk /s³", ddds * vm**3))
+        rows.append((f"slave jerk\n[{u}/s³]", ddds * vm**3, lim.get("j_max")))
     fig = Figure(figsize=(8.0, 2.2 * len(rows) + 0.6))
     FigureCanvasAgg(fig)
     axes = fig.subplots(len(rows), 1, sharex=True)
-    for ax, (label, values) in zip(np.atleast_1d(axes), rows):
+    for ax, (label, values, limit) in zip(np.atleast_1d(axes), rows):
         # step-like curves (a linear table's velocity) read best as drawn lines between samples
         ax.plot(x, values, linewidth=1.2)
+        if limit is not None:  # the axis' limit, both signs: where the cam asks too much
+            for sign in (1.0, -1.0):
+                ax.axhline(sign * limit, color="tab:red", linestyle="--", linewidth=0.9,
+                           label="axis limit" if sign > 0 else None)
+            ax.legend(loc="upper right", fontsize=7)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     np.atleast_1d(axes)[-1].set_xlabel("master position")
@@ -969,4 +981,5 @@ def plot_cam(
     fig.tight_layout()
     with atomic_open(path, "wb") as file:
         fig.savefig(file, format="png", dpi=100)
+    return [(label, limit) for label, _, limit in rows]
 
