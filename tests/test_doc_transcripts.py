@@ -39,7 +39,7 @@ TRANSCRIPTS = _transcripts()
 
 def test_every_device_guide_has_a_transcript():
     guides = {name for name, *_ in TRANSCRIPTS}
-    assert {"compax.md", "wago672-modbus.md", "fs701.md"} <= guides
+    assert {"compax.md", "clm.md", "wago672-modbus.md", "fs701.md"} <= guides
 
 
 def _exchanges_prompt(lines: list[str]) -> list[tuple[str, list[str]]]:

@@ -504,3 +504,32 @@ def test_gear_in_pos_rejects_a_sync_velocity_above_the_slave_limit_and_a_master_
     run_to_sync(rig, gear, 50.0)
     p, v, _, m, vm = rig.trace[-1]
     assert abs(p - (30.0 + (m - 50.0))) < 1e-6 * 30.0 and v == pytest.approx(vm)
+
+
+def test_gear_in_pos_takes_its_own_approach_acceleration() -> None:
+    """GearInPos(acceleration=, deceleration=): a controller's own ramps (the CLM's Ax08 in the
+    flying cutoff) instead of the axis' mechanical a_max: the approach stays within them, and a
+    sync the lower ramp cannot reach in the distance left is refused before any motion."""
+    master = TimeBase(T, 200.0)
+    slave = slave_axis("trapezoid", j_max=None)
+    rig = Rig(master, slave)
+    rig.step()
+    a_own = 1000.0  # a fifth of the axis' A_MAX
+    # 1:1 from rest to 200 mm/s needs 200^2 / (2 * 1000) = 20 mm of slave travel
+    gear = GearInPos(master, slave, *ratio("1", master, slave), master_sync_position=300.0, slave_sync_position=20.0,
+                     acceleration=a_own, deceleration=a_own)
+    gear.gear_in()
+    run_to_sync(rig, gear, 300.0)
+    assert max(abs(a) for _, _, a, _, _ in rig.trace) <= a_own * (1 + 1e-9)
+    p, v, _, m, vm = rig.trace[-1]
+    assert p == pytest.approx(20.0 + (m - 300.0), abs=1e-6)
+    assert v == pytest.approx(vm, rel=1e-9)
+    # from rest, 200 mm/s 20 mm of master travel away: 0.04 s of ramp at the axis' A_MAX, but
+    # 0.2 s (more than the 0.1 s the master takes) at a_own
+    master2 = TimeBase(T, 200.0)
+    slave2 = slave_axis("trapezoid", j_max=None)
+    Rig(master2, slave2).step()
+    GearInPos(master2, slave2, *ratio("1", master2, slave2), master_sync_position=20.0, slave_sync_position=10.0)
+    with pytest.raises(GearInPosError):
+        GearInPos(master2, slave2, *ratio("1", master2, slave2), master_sync_position=20.0, slave_sync_position=10.0,
+                  acceleration=a_own)

@@ -664,6 +664,8 @@ class GearInPos(Gear):
     velocity: speed cap of the approach move (None: the slave's v_max).
     master_velocity: nominal master speed of the master-domain plan (None: the master's
     velocity at gear_in; needed when the master stands at gear_in).
+    acceleration / deceleration: limits of the approach move (None: the slave's a_max / d_max),
+    for a controller whose ramps are its own parameters (the CLM's flying cutoff: Ax08).
 
     The constructor checks the request against the current master and slave state and
     raises GearInPosError when the slave cannot reach the sync state in the master
@@ -682,8 +684,14 @@ class GearInPos(Gear):
         slave_sync_position: float,
         velocity: float | None = None,
         master_velocity: float | None = None,
+        acceleration: float | None = None,
+        deceleration: float | None = None,
     ) -> None:
         super().__init__(master, slave, numerator, denominator)
+        if acceleration is not None:
+            self._a_max = _positive("acceleration", acceleration)
+        if deceleration is not None:
+            self._d_max = _positive("deceleration", deceleration)
         self.master_sync_position = _number("master_sync_position", master_sync_position)
         self.slave_sync_position = _number("slave_sync_position", slave_sync_position)
         self.approach_velocity = None if velocity is None else _positive("velocity", velocity)

@@ -121,6 +121,11 @@ Decisions (spec line -> choice, why)
     Parameter mode (kernel `Machine.set_directions`). Tests:
     tests/devices/clm/test_axis.py::test_ax21_turns_a_reversed_encoder_round,
     test_ax21_output_alone_runs_away, test_ax21_both_reverse_the_motion.
+28. Flying cutoff (Ax00 mode 5, axis 1; L3933, L3947) -> the feedforward is on whatever A111
+    says (its averaging digit kept when set), POI / PSI run at A106 whatever velocity they
+    program; the carriage is coupled by `synchronize` (cutoff.py, the kernel's GearInPos) and
+    returns by `move_to`. tests/devices/clm/test_cutoff.py::test_poi_on_axis_1_runs_at_a106,
+    test_consecutive_pieces_have_the_programmed_length.
 """
 
 from __future__ import annotations
@@ -155,6 +160,8 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     # axes by number (set by the personality) to find the master
     follower: Follower | None = None
     peers: dict[int, Any] = {}
+    cutoff_axis = False  # axis 1 in Ax00 mode 5 (flying cutoff, cutoff.py)
+    _ramp_override: float | None = None  # move_to's own ramps (cutoff.py's optimised return)
 
     def __init__(self, number: int, machine: Any, axis_name: str, params: ParameterSet, image: ProcessImage, nc_cycle_s: float) -> None:
         if number not in DRIVE_OUTPUTS:
@@ -224,13 +231,17 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         if self.follower is not None:
             self.follower.detach()
         mode = params.axis_mode(self.number)
+        self.cutoff_axis = self.number == 1 and mode == 5  # flying cutoff (cutoff.py)
         self.follower = Follower(self, mode, int(params.get(a + "00")["master"])) if mode in (1, 2) else None
         self._configure_table_and_homing(params, feed)
         self._params = params
         self._configure_wheel()
         self._configure_feed_roll(params, self.number)
         self.feed_signals = FeedSignals(params, self.number, self.image, self.nc_cycle_s)  # Ax29, Ax32
-        self.loop.configure(kv=float(kv), feedforward=int(num("11", "feedforward")), full_speed=self._full_speed,
+        feedforward = int(num("11", "feedforward"))
+        if self.cutoff_axis:  # "'Feedforward' is always activated, independently of ... A111" (L3933)
+            feedforward = max(1, feedforward)
+        self.loop.configure(kv=float(kv), feedforward=feedforward, full_speed=self._full_speed,
                             full_volts=float(num("12", "command_voltage")), window=self.window)
         self.machine.drive_by(self.axis_name, self.loop, volts=True)
         p21 = params.get(a + "21")  # decision 27
@@ -335,7 +346,7 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     def position_incremental(self, distance: int, per_mille: int) -> None:
         """POI / PSI: the target grows by distance (1/1000 IU) x FAK (decision 10)."""
         self._check()
-        speed = self._velocity(per_mille)
+        speed = self._velocity(per_mille) if not self.cutoff_axis else float(self._vmax)  # A106 (L3947)
         self.feed_signals.new_feed()  # Ax29 (feed_signals.py)
         goal = self._base() + Fraction(distance, _MILLI) * self._factor
         if self.wheel is not None:  # Version 2: the compiled difference (measuring_wheel.py 4)
@@ -352,7 +363,8 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         """Slave / synchronous axis coupled: positionings are the Follower's own part."""
         return self.follower is not None and self.follower.attached
 
-    def _move_to(self, goal: Fraction, speed: float) -> None:
+    def _move_to(self, goal: Fraction, speed: float, ramp: float | None = None) -> None:
+        self._ramp_override = ramp  # (the flying cutoff's optimised return, cutoff.py; else ACC)
         self._con = None
         self._jog = 0
         self._kept = False
@@ -375,10 +387,11 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     # -- end of the velocity functions hook ------------------------------------------------------
 
     # -- registration hook (registration.py: SRM offset move, SRP correction, RMI suspend/resume) --
-    def move_to(self, goal: Fraction, speed: float | None = None) -> None:
-        """Position to the exact `goal` (IU, axis frame) at `speed` IU/s (None: the last speed)."""
+    def move_to(self, goal: Fraction, speed: float | None = None, ramp: float | None = None) -> None:
+        """Position to the exact `goal` (IU, axis frame) at `speed` IU/s (None: the last speed),
+        with `ramp` IU/s^2 for both ramps (None: the ACC ramps)."""
         self._check()
-        self._move_to(Fraction(goal), self._speed if speed is None else abs(speed))
+        self._move_to(Fraction(goal), self._speed if speed is None else abs(speed), ramp)
 
     def shift_target(self, delta: Fraction) -> None:
         """Move the programmed target by `delta` IU (a running positioning is replanned)."""
@@ -394,6 +407,30 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         return abs(self._velocity(per_mille))
 
     # -- end of the registration hook --------------------------------------------------------------
+
+    # -- flying cutoff hook (cutoff.py) ----------------------------------------------------------
+    @property
+    def maximum_velocity(self) -> float:
+        """A106 (Ax06), IU/s: the return and the POI/PSI speed in flying cutoff (L3947)."""
+        return float(self._vmax)
+
+    @property
+    def max_travel(self) -> float:
+        """Ax04, IU."""
+        return self._max_f
+
+    def synchronize(self, gear: Any) -> None:
+        """Hand the kernel axis to `gear` (a GearInPos); no programmed target while coupled."""
+        self._check()
+        self._con = None
+        self._jog = 0
+        self._kept = self._blocked = self._braking = False
+        self._target = None
+        cmd = gear.gear_in()
+        if cmd.error:
+            raise ClmError("0A", f"axis {self.number}: the flying cutoff could not couple the carriage ({cmd.error_text})")
+
+    # -- end of the flying cutoff hook -------------------------------------------------------------
 
     def _start(self) -> None:
         """Hand the target (or CON) to the kernel; blocked while the drive is off (decision 17)."""
@@ -416,9 +453,10 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         if self._con is not None:
             cmd = ax.move_velocity(self._con, acceleration=self.acceleration, deceleration=self.deceleration, jerk=self._jerk())
         elif self._target is not None and self._speed > 0.0:
+            ramp = self._ramp_override
             cmd = ax.move_absolute(float(self._target), velocity=self._speed if self.override is None else self.override(self._speed),
-                                   acceleration=self.acceleration,
-                                   deceleration=self.deceleration, jerk=self._jerk())
+                                   acceleration=self.acceleration if ramp is None else ramp,
+                                   deceleration=self.deceleration if ramp is None else ramp, jerk=self._jerk())
         else:
             self._blocked = self._target is not None  # 000 per mille: the target waits for a velocity
             return

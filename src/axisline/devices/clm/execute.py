@@ -2,10 +2,9 @@
 
 One function per mnemonic, ``handler(rt, task, ins) -> next instruction | None (wait)``,
 collected in `HANDLERS`. Field values are read through the runtime (`rt.value`), which fits a
-variable to its field (fault 32) and checks an axis (16, 4E). The commands of the axis
-functions (part 3: FUN) and of
-the flying cutoff (part 4: LML, LMK, LMR, EOS, MLO, MLT) are not in this version: reaching one
-stops the program with fault 0A and says so. RSV is `restart.op_rsv` (the restart program,
+variable to its field (fault 32) and checks an axis (16, 4E). LML and EOS are the flying
+cutoff's (`cutoff`, rt.cutoff), LMK and LMR `cutoff_raster`, MLO and MLT `material_length`. In flying cutoff a command forbidden for axis 1
+(commands.py ``fc_forbidden``, L3944-3947) is fault 0A when it addresses axis 1 (JST at all). RSV is `restart.op_rsv` (the restart program,
 restart.py); ACC and FAK note the program's values there for the restart image, and RMI notes
 where Task 2's raster cycle began (restart decisions 1, 9). VCC, VEO and AEO are here, their state and
 decisions in `override` (rt.velocity); SRM, REP, SRP and RMI in `registration`
@@ -42,6 +41,8 @@ from .errors import ClmError
 from .fields import VARIABLE_MAX, VARIABLE_SCALE, Var
 from .operands import Operand
 from .program import Instruction
+from .cutoff_raster import op_lmk, op_lmr
+from .material_length import op_mlo, op_mlt
 from .measuring_wheel import op_fun
 from .registration import op_rep, op_rmi, op_srm, op_srp
 from .restart import op_rsv
@@ -53,9 +54,7 @@ if TYPE_CHECKING:
 __all__ = ["HANDLERS", "LATER"]
 
 # commands of the later parts: the part that brings them
-LATER = {
-    **dict.fromkeys(("LML", "LMK", "LMR", "EOS", "MLO", "MLT"), "part 4 (flying cutoff)"),
-}
+LATER: dict[str, str] = {}  # (every command is there since part 4)
 
 
 def _next(task: NcTask) -> int:
@@ -346,6 +345,8 @@ def op_jsr(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 
 
 def op_rts(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    if rt.cutoff is not None:
+        rt.cutoff.end_of_program(task)  # a processing program without EOS: 35 (cutoff.py 5)
     if not task.stack and rt.manual_vector_running(task):
         rt.end_manual_vector()  # the manual vector program ends with RTS on an empty stack (L3377)
         return task.pc
@@ -355,6 +356,8 @@ def op_rts(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 def op_jst(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     """Jump, then stop there: all of tasks 1, 2, 4, 5 stop as at Immediate Stop (L2064-2081)."""
     target = rt.target(ins, 0)
+    if rt.cutoff is not None:
+        raise ClmError("0A", "JST may not be programmed in flying cutoff (L3944-3947)")
     rt.programmed_stop(task, target)
     return target
 
@@ -513,6 +516,28 @@ def op_rmi_noted(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     return op_rmi(rt, task, ins)
 
 
+# -- flying cutoff (state and decisions in cutoff.py) ---------------------------------------------
+
+
+def op_lml(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """LML 1 LLLLLL.LLL: waits until the carriage is synchronous with the cut point (L2119-2131)."""
+    cutoff = rt.cutoff
+    if cutoff is None:
+        raise ClmError("0A", "LML needs axis 1 in flying cutoff (A100 mode 5, L2129)")
+    rt.axis(ins, 0)
+    if task.wait is None:
+        cutoff.raster_mode = None  # (LMK / LMR set theirs: cutoff_raster.py)
+    return _next(task) if cutoff.lml(task, ins.number, Fraction(rt.number(ins, 1), 1000)) else None
+
+
+def op_eos(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
+    """EOS: the synchronous phase ends, the carriage returns home (L1905-1911)."""
+    if rt.cutoff is None:
+        raise ClmError("0A", "EOS needs axis 1 in flying cutoff (A100 mode 5, L1911)")
+    rt.cutoff.eos(task)
+    return _next(task)
+
+
 def _later(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
     raise ClmError("0A", f"{ins.mnemonic} is not available in this version of axisline (it comes with {LATER[ins.mnemonic]})")
 
@@ -529,5 +554,8 @@ HANDLERS: dict[str, Handler] = {
     "HOM": op_hom, "FOL": op_fol, "RTM": op_rtm, "SAC": op_sac,
     "SRM": op_srm, "REP": op_rep, "SRP": op_srp, "RMI": op_rmi_noted, "RSV": op_rsv,
     "FUN": op_fun,  # feed length measurement (measuring_wheel.py decision 7)
+    "LML": op_lml, "EOS": op_eos,  # flying cutoff (cutoff.py)
+    "LMK": op_lmk, "LMR": op_lmr,  # raster-corrected lengths (cutoff_raster.py)
+    "MLO": op_mlo, "MLT": op_mlt,  # material length (material_length.py)
     **dict.fromkeys(LATER, _later),
 }

@@ -30,7 +30,8 @@ Decisions (spec line -> choice, why)
    master encoder 1 is one thing for V011, Status 47, VEO 5 and AEO);
    test_position_is_exact_counts_times_c002.
 3. C001 encoder direction (L5495-5497 "0 = do not turn, 1 = turn") -> 1 negates the counts;
-   averaging (flying cutoff only, L5485) and track monitoring are not modelled; C003 "currently
+   averaging (flying cutoff only, L5485) is the flying cutoff's (cutoff.py decision 12), track
+   monitoring is not modelled; C003 "currently
    has no function" (L5531) -> ignored. test_direction_digit_turns_the_count.
 4. Velocity (L7191 "average values (calculated over 32 control cycles)") -> V011 and Status 47
    are the count difference over the last 32 NC cycles (fewer right after power on) x scale /

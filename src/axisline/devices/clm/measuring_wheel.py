@@ -67,9 +67,11 @@ Decisions (spec line -> choice, why)
    position at the (re)start, live (V040/V042 master encoders in IU, Vx11 the axis' actual
    position, in measuring wheel mode its position from the wheel as Status 09's, so that both
    versions measure the material fed); 0 buffers the current value (V041/V043/Vx12) then
-   restarts, 1 restarts keeping the buffer, 2 leaves the channel. The material channel
-   (V025/V026) is the flying cutoff's (L1993), part 4: no function yet. A channel whose encoder
-   or axis is missing reads 0. One cycle. test_fun_measures_feed_lengths.
+   restarts, 1 restarts keeping the buffer, 2 leaves the channel. The material channel (V026
+   current, V025 buffered, L1371-1372, L1993) measures the material through the tool in flying
+   cutoff: master encoder 1 less the carriage (cutoff.py: "the movements of the carriage and
+   the material movements are detected"); without the flying cutoff it reads 0. A channel whose
+   encoder or axis is missing reads 0. One cycle. test_fun_measures_feed_lengths.
 8. Status 09 ``Xs09__evmmmmm.mmm_vnnnnnn.nnn_`` (L6951-6973) -> two blanks after 09 as
    printed, both values 6.3 with sign (status.py decision 1), e = ``A`` when axis 1 is homed;
    m = axis 1's position from the wheel (motor + the wheel - motor travel while active: "the
@@ -313,7 +315,8 @@ class WheelAxis:
 
 # the FUN digits in commands.py's order, and the variables (current, buffered) of each channel
 CHANNELS = ("me1", "me2", "axis1", "axis2", "axis3", "axis4", "material")
-_VARIABLES = {"me1": (40, 41), "me2": (42, 43), "axis1": (111, 112), "axis2": (211, 212), "axis3": (311, 312), "axis4": (411, 412)}
+_VARIABLES = {"me1": (40, 41), "me2": (42, 43), "axis1": (111, 112), "axis2": (211, 212), "axis3": (311, 312), "axis4": (411, 412),
+              "material": (26, 25)}  # (current, buffered): V026 / V025 (L1371-1372)
 
 
 class FeedLengths:
@@ -337,7 +340,8 @@ class FeedLengths:
                 return None
             wheel = getattr(axis, "wheel", None)  # measuring wheel mode: the material's feed
             return Fraction(axis.actual_position if wheel is None else wheel.wheel_position)
-        return None  # the material through the tool: flying cutoff, part 4
+        cutoff = getattr(rt, "cutoff", None)  # the material through the tool (cutoff.py): master - carriage
+        return None if cutoff is None else cutoff.material_point()
 
     def current(self, channel: str) -> Fraction:
         start = self.start.get(channel)

@@ -33,7 +33,9 @@ the Logic Task go on), switches the drives off, clears M2 and the outputs as B01
 it is cleared the program starts again from 0000. The exception is Restart (`restart`): a
 fault, a switch to Manual or a power loss while the program runs keeps an image of it that
 the Re-Start input (I0.01.6, fieldbus I2.01.6) restores; `restart.Restart.interrupted` is
-called before anything is stopped or cleared.
+called before anything is stopped or cleared. In flying cutoff (axis 1 in Ax00 mode 5,
+`cutoff`) Start, Immediate Stop, ``!START`` and ``!STOP`` have no function: selecting Automatic
+starts the program (cutoff.py decision 7; error 36 away from home).
 
 Decisions (spec line -> choice, why)
 ------------------------------------
@@ -183,6 +185,8 @@ class ModeMachine:
         if old == "automatic":
             self._stop_program()
             rt.memory.leave_automatic()
+            if rt.cutoff is not None:
+                rt.cutoff.leave_automatic()
         if wanted == "parameter":
             for task in rt.tasks:
                 task.halt()
@@ -201,8 +205,28 @@ class ModeMachine:
                 if not self.axis_enable_input(n):
                     self.fault(ClmError(axis_fault(0x00, n), f"Automatic selected without Enable Axis {n}"))
                     return
+            if rt.cutoff is not None and self.fault_error is None:
+                self._start_cutoff()
         elif wanted == "manual" and self._b014[1] == 1:
             self._start_manual_vector()
+
+    def _start_cutoff(self) -> None:
+        """Flying cutoff: Automatic starts the program without Start (cutoff.py decision 7)."""
+        rt = self.rt
+        try:
+            rt.cutoff.enter_automatic()  # Task 1; 36 away from home
+        except ClmError as e:
+            self.fault(e)
+            return
+        params = rt.memory.parameters
+        starts = {2: params.get("B011")["task_2_start"], 4: params.get("B012")["task_4_start"], 5: params.get("B012")["task_5_start"]}
+        for n, at in starts.items():
+            if int(at):
+                rt.tasks[n - 1].start(int(at))
+        rt.restart.started()
+        self.restart_from_zero = False
+        self._stopped_tasks = set()
+        self.running = True
 
     def _leave_parameter_mode(self) -> None:
         rt = self.rt
@@ -214,6 +238,7 @@ class ModeMachine:
         self._take_parameters()
         for axis in rt.axes.values():
             axis.configure(params)
+        self._make_cutoff()
         errors = params.errors()
         if errors:
             self.fault(errors[0] if errors[0].code in ("02", "17") else ClmError("02", errors[0].detail, errors[0].where))
@@ -226,6 +251,19 @@ class ModeMachine:
         task3 = int(params.get("B011")["task_3_start"])
         if task3:
             rt.tasks[2].start(task3)
+
+    def _make_cutoff(self) -> None:
+        """Axis 1 in Ax00 mode 5: the flying cutoff (cutoff.py); its counters and the length
+        instruction to start from survive Parameter mode."""
+        rt = self.rt
+        old = rt.cutoff
+        rt.cutoff = None
+        if 1 in rt.axes and rt.memory.parameters.axis_mode(1) == 5:
+            from .cutoff import FlyingCutoff
+
+            rt.cutoff = FlyingCutoff(rt)
+            if old is not None:
+                rt.cutoff.carry(old)
 
     def _take_parameters(self) -> None:
         params = self.rt.memory.parameters
@@ -275,6 +313,9 @@ class ModeMachine:
             if not self.axis_enable_input(n):
                 self.fault(ClmError(axis_fault(0x00, n), f"Enable Axis {n} lost in Automatic"))
                 return
+        if self.rt.cutoff is not None:  # Start and Immediate Stop have no function (L3929-3931)
+            self._interrupt_inputs()
+            return
         run_allowed = bool(self._bit(IMMEDIATE_STOP))
         if self.running and not run_allowed:
             self.immediate_stop()
@@ -290,6 +331,8 @@ class ModeMachine:
         else where the tasks stopped (the axes first run their remaining distance)."""
         rt = self.rt
         if self.mode != "automatic" or self.fault_error is not None or (self.interface_stopped and not interface):
+            return
+        if rt.cutoff is not None:  # flying cutoff: no Start, not even over the interface (L3949)
             return
         if not self._bit(IMMEDIATE_STOP):
             return
@@ -324,6 +367,8 @@ class ModeMachine:
         """Immediate Stop input, JST or ``!STOP``: tasks 1, 2, 4, 5 stop where they are (a waiting
         command keeps its state), the axes decelerate keeping the remaining distance."""
         rt = self.rt
+        if rt.cutoff is not None and not programmed:  # flying cutoff: no Immediate Stop (L3929, L3949)
+            return
         self._stopped_tasks |= {t.number for t in rt.tasks if t.number != 3 and t.running}
         for task in rt.tasks:
             if task.number != 3:
@@ -407,6 +452,8 @@ class ModeMachine:
         self.running = False
         self.manual_vector = False
         self.restart_from_zero = True
+        if rt.cutoff is not None:
+            rt.cutoff.leave_automatic()
         for axis in rt.axes.values():
             axis.fault_stop()
         rt.registration.reset()  # REP limits are cleared by a fault (L2354)

@@ -114,6 +114,16 @@ class ClmConfig(BaseModel):
         "faults 12-15 in Automatic (decade_switch.py); none: nothing connected",
     )
     start_at: float | None = Field(None, ge=0.0, le=1e6, description="press Start this many seconds after power-on (none: only the wired input or !START)")
+    stop_after_cuts: int | None = Field(
+        None, ge=1, le=1_000_000,
+        description="flying cutoff (A100 mode 5): the run is complete after this many cuts (the report_output's rising "
+        "edges); the cutoff program itself never stops (JST is forbidden, L3944); none: machine.duration ends it",
+    )
+    test_speed_steps: int | None = Field(
+        None, ge=0, le=32,
+        description="flying cutoff in test mode (A100's test digit): the material speed key pressed this many times when the "
+        "cutoff first runs: the internal clock runs at steps/32 x A106 in Automatic (cutoff.py decision 11); none: 0",
+    )
     report_output: OutputName | None = Field(
         None, description="the CLM output whose rising edge the report records (the press signal): the position error of axis 1 then"
     )
@@ -124,7 +134,7 @@ class ClmPersonality(Personality):
 
     name = "clm"
     Config = ClmConfig
-    endpoints = ("serial-tcp",)
+    endpoints = ("serial-tcp", "modbus")
 
     def __init__(self, machine: Any, config: ClmConfig) -> None:
         super().__init__(machine, config)
@@ -203,6 +213,9 @@ class ClmPersonality(Personality):
         self._targets: dict[int, float] = {}
         self._ever_ran = False
         self.store_error: str | None = None
+        self.profibus: Any = None  # the Profibus DP image once served (register_endpoint, profibus.py)
+        self.meter: Any = None  # cutreport.CutMeter of a flying cutoff (axis 1 in Ax00 mode 5)
+        self._was_running = False
 
     # -- construction ----------------------------------------------------------------------
 
@@ -304,7 +317,10 @@ class ClmPersonality(Personality):
         if self._report is not None:  # the press gets its signal now: record the feed there
             now = image.get(self._report)
             if now and not self._report_previous:
-                self._record(cycle)
+                if self.meter is not None and self.rt.cutoff is not None:
+                    self.meter.cut(cycle)  # a flying cutoff: the piece measured on the material
+                else:
+                    self._record(cycle)
             self._report_previous = now
         for (at, shift, _), source in self._input_places:  # the wired inputs into the image
             on = source if source.__class__ is bool else source()
@@ -325,8 +341,22 @@ class ClmPersonality(Personality):
         for encoder in self._master_encoders:  # (nothing per cycle without a master encoder)
             encoder.sample(cycle)
         self.ids.tick(cycle)  # the IDS01 on X6 (a fault 12-15 stops the tasks before they run)
-        self.rt.step()
-        self._ever_ran = self._ever_ran or self.rt.modes.running
+        if self.profibus is not None:  # the DP control word as system inputs, the watchdog (profibus.py)
+            self.profibus.cycle(self.rt.step)
+        else:
+            self.rt.step()
+        running = self.rt.modes.running
+        self._ever_ran = self._ever_ran or running
+        if self.rt.cutoff is not None:  # (cutreport.py: the first piece counts from the start)
+            if self.meter is None:
+                from .cutreport import CutMeter
+
+                self.meter = CutMeter(self)
+                for _ in range(self.config.test_speed_steps or 0):  # test mode's key (cutoff.py 11)
+                    self.rt.cutoff.test_key("up")
+            if running and not self._was_running:
+                self.meter.started()
+        self._was_running = running
         if self.store is not None:
             try:
                 self.store.save(self.memory)
@@ -359,7 +389,11 @@ class ClmPersonality(Personality):
 
     @property
     def finished(self) -> bool:  # type: ignore[override]
-        """The program ran and has stopped (JST, a fault): a batch is done."""
+        """The program ran and has stopped (JST, a fault): a batch is done; a flying cutoff has
+        made its stop_after_cuts cuts."""
+        n = self.config.stop_after_cuts
+        if n is not None and self.meter is not None and len(self.meter.records) >= n:
+            return True
         return self._ever_ran and not self.rt.modes.running
 
     # -- persistence and reporting -------------------------------------------------------------
@@ -372,6 +406,17 @@ class ClmPersonality(Personality):
 
         store = None if self.store is None else (lambda: self.store.save(self.memory))  # type: ignore[union-attr]
         return ClmSerialEndpoint(self.rt, lambda: self.network_writes, store=store)
+
+    def register_endpoint(self) -> Any:
+        """The Profibus DP image (`profibus`) as Modbus TCP registers, for `serve --modbus`
+        (docs/clm-profibus.md): writes need `network_writes`; a write over the service channel
+        is in the memory file before its reply."""
+        from .profibus import ClmProfibus
+
+        if self.profibus is None:
+            store = None if self.store is None else (lambda: self.store.save(self.memory))  # type: ignore[union-attr]
+            self.profibus = ClmProfibus(self.rt, lambda: self.network_writes, store=store)
+        return self.profibus
 
     def store_paths(self) -> list[Path]:
         return [self.memory_path] if self.memory_path is not None else []
@@ -387,11 +432,16 @@ class ClmPersonality(Personality):
         errors = [abs(r["error"]) for r in self.records]
         fault = modes.fault_error
         products = self.rt.registration.products
+        cuts = [] if self.meter is None else self.meter.records
+        cutoff = self.rt.cutoff
+        cut_errors = [abs(c["error_counts"]) for c in cuts if c["error_counts"] is not None]
         return {
             "headline": (
-                f"CLM: {modes.mode}, {len(self.records)} feed(s) recorded"
+                f"CLM: {modes.mode}"
+                + ("" if cuts else f", {len(self.records)} feed(s) recorded")
                 + (f", largest error {max(errors):.4f}" if errors else "")
                 + (f", {len(products)} product(s) registered, largest correction {max(abs(r['correction']) for r in products):.3f}" if products else "")
+                + (f", {len(cuts)} cut(s), largest length error {max(cut_errors):.2f} increments" if cut_errors else "")
                 + (f", fault {fault.code} {fault.text}" if fault is not None else "")
             ),
             "mode": modes.mode,
@@ -403,7 +453,25 @@ class ClmPersonality(Personality):
             "store_error": self.store_error,
             "registration": self.rt.registration.products,
             "decade_switch": self._ids_summary(),
+            "cuts": cuts,  # the flying cutoff's pieces (cutreport.py; the FS701's keys)
+            "length_unit": self.machine.axis(self.config.axes[0]).config.unit,
+            "cutoff": None if cutoff is None else {"material_length": float(cutoff.material_length),
+                                                   "product_length": float(cutoff.product_length), "state": cutoff.state},
+            "profibus": None if self.profibus is None else self.profibus.summary(),
         }
+
+    def json_fields(self, device_summary: dict[str, Any]) -> dict[str, Any]:
+        """`run --json` of a flying cutoff: "cuts" and "summary" in the FS701's names (report.cuts)."""
+        if not device_summary.get("cuts"):
+            return {}
+        from axisline.report.cuts import job_json
+
+        return job_json(device_summary)
+
+    def plots(self, out_dir: str | Path, data: dict | None, units: dict | None = None) -> list[Path]:
+        from .cutreport import write_plots
+
+        return write_plots(self.summary(), out_dir)
 
     def _ids_summary(self) -> dict[str, Any] | None:
         ids = self.ids
@@ -433,6 +501,9 @@ class ClmPersonality(Personality):
             errors = ", ".join(f"{code}: {n}" for code, n in ids["errors"].items()) or "none"
             lines += ["", f"IDS01 decade switch on X6 ({'read' if ids['read'] else 'not read: B002 selects a data interface'}): "
                       f"{ids['telegrams']} good telegram(s), errors {errors}."]
+        from .cutreport import report_section
+
+        lines += report_section(device_summary, plots)
         return "\n".join(lines) + "\n"
 
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:

@@ -66,6 +66,8 @@ class ClmRuntime:
         self.tasks = [NcTask(n) for n in range(1, 6)]
         self.master_factor = _SCALE  # FAK 5: master encoder 1's feed constant factor
         self.master_encoder: Any = None  # master_encoder.MasterEncoder1 when wired on the plant
+        self.cutoff: Any = None  # cutoff.FlyingCutoff while axis 1 is in Ax00 mode 5 (set by modes)
+        self.material_outputs: Any = None  # material_length.MaterialOutputs once an MLO ran
         self.analog: Any = None  # analog.ClmAnalogInputs, set by the personality (V007-V010, Status 45/49)
         self.message = ""  # Status 53 text (TXT mode 1)
         self.text_lines = [""] * 4  # Status 63 (TXT mode 0)
@@ -94,6 +96,10 @@ class ClmRuntime:
             self.modes.evaluate()
             self.velocity.tick()
             self._logic_task()
+            if self.cutoff is not None:  # length counters, the end of the return (cutoff.py)
+                self.cutoff.tick(self.modes.mode)
+            if self.material_outputs is not None:  # MLO (material_length.py)
+                self.material_outputs.tick(self.modes.mode)
             registration = self.registration
             if registration.armed:  # a mark is awaited: latch it before the tasks look
                 registration.tick()
@@ -218,6 +224,8 @@ class ClmRuntime:
                 raise ClmError("16", f"{value} = {raw / _SCALE:.6f}: the axis is {field.describe()}")
             value = raw // _SCALE
         number = int(value)  # type: ignore[call-overload]
+        if number == 1 and self.cutoff is not None and ins.command.fc_forbidden:
+            raise ClmError("0A", f"{ins.mnemonic} may not be programmed for axis 1 in flying cutoff (L3944-3947)")
         axis = self.axes.get(number)
         if axis is None or number not in self.modes.enabled_axes:
             raise ClmError(axis_fault(0x0E, number), f"{ins.mnemonic} for axis {number}, which is not enabled")

@@ -103,11 +103,15 @@ Decisions (spec line -> choice, why)
     ``test_parameter_read_back_is_the_manual_table``.
 11. C-INTERFACE, spec §8.6: CLEAR is the CL key (``modes.clear``); CCLVAR0019 (and §7.13's
     ``CLLVAR0019``) clears the time counter V019; CL0 (and A138's ``CLO``) makes the next start
-    begin at 0000; CLL1/CLL2 clear the cutoff length counters, which are 0 until part 4 (so
-    they are accepted and change nothing); MxON/MxOFF switch axis x's interface enable (the
+    begin at 0000 (in flying cutoff: the next Automatic, cutoff.py decision 7); CLL1/CLL2 clear
+    the cutoff's material / product length counter (accepted and without effect when axis 1 is
+    not in flying cutoff: the counters are 0 then); MxON/MxOFF switch axis x's interface enable (the
     axis' ``interface_enable`` when it has one); the NC range of CNOPNC keeps the counters of
     the instructions outside it; CNOPLT puts END at 0000 when its range starts there (L7462).
-    Test: ``test_interface_commands``.
+    In flying cutoff START and STOP are answered 18 "Not accepted" ("Interface commands 'Program
+    Start' and 'Program Stop' are not allowed via the interface", L3949).
+    Tests: ``test_interface_commands``, tests/devices/clm/test_cutoff.py::
+    test_start_and_stop_over_the_interface_are_not_accepted.
 12. C-DURABLE: a write is acknowledged only once it is stored: after the telegrams of one
     reception, the retained memory is saved (`store`) before the replies go out; if it cannot
     be saved the writes of that reception are undone and each is answered 18. Test:
@@ -413,6 +417,8 @@ class ClmSerialEndpoint:
         rt = self.rt
         modes = rt.modes
         memory = rt.memory
+        if command in ("START", "STOP") and getattr(rt, "cutoff", None) is not None:
+            raise ClmError(serial_code(18), f"{command}: Program Start / Stop are not allowed via the interface in flying cutoff (L3949)")
         if command == "START":
             self._mode("automatic", "START")
             modes.start(interface=True)
@@ -427,8 +433,11 @@ class ClmSerialEndpoint:
         elif command in ("CL0", "CLO"):
             self._mode("manual", "CL0")
             modes.restart_from_zero = True
+            if getattr(rt, "cutoff", None) is not None:  # the flying cutoff's next Automatic starts at 0000 (cutoff.py 7)
+                rt.cutoff.start_at_zero = True
         elif command in ("CLL1", "CLL2"):
-            pass  # decision 11: the cutoff counters are 0 until part 4
+            if getattr(rt, "cutoff", None) is not None:  # decision 11
+                rt.cutoff.clear_counter(int(command[3]))
         elif re.fullmatch(r"M[1-4](ON|OFF)", command):
             self._axis_enable(int(command[1]), command.endswith("ON"))
         elif command == "CSETPA":

@@ -62,8 +62,8 @@ Decisions (spec line -> choice, why)
    the measuring wheel's position) answer error 10 "M-Wheel Param Error" when the measuring
    wheel is not set up, as L7193 says the CLM does for 47 (C000 without a resolution; for 09:
    axis 1 not in measuring-wheel mode 3/4); with the wheel set up (47: but no master encoder 1
-   wired on the plant, ``device.master_encoder_1``, else its value), and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271;
-   part 4), error 09 "Status # illegal" ("status information that was not present in the
+   wired on the plant, ``device.master_encoder_1``, else its value), and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271)
+   without axis 1 in flying cutoff (with it: cutoff.py decision 8), error 09 "Status # illegal" ("status information that was not present in the
    CLM", L6815): a host reads that the value does not exist, not that a parameter is wrong.
    Status 01 itself is 09 ("can *not* be queried", L6791). Test:
    ``test_status_not_available``.
@@ -354,8 +354,11 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
         axis = _axis(rt, 1)
         homed = "A" if axis is not None and getattr(axis, "homed", False) else " "
         return f"41 {homed}{_fixed(rt.registration.latch41, 6, 3)} "
-    if number == 54:
-        raise ClmError(serial_code(9), "Status 54 (cutoff length counters) is part 4 of axisline's CLM, not yet available")
+    if number == 54:  # the cutoff length counters (cutoff.py decision 8)
+        cutoff = getattr(rt, "cutoff", None)
+        if cutoff is None:
+            raise ClmError(serial_code(9), "Status 54 (cutoff length counters) is only supported for Flying Cutoff (A100 mode 5, L7271)")
+        return cutoff.status_54()
     if number == 1:
         raise ClmError(serial_code(9), "Status 01 is sent by the CLM after a transmission error; it cannot be queried (L6791)")
     raise ClmError(serial_code(9), f"Status {number:02d} is not a status of the CLM")

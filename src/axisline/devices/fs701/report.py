@@ -28,6 +28,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from axisline.report.cuts import cut_table_markdown as shared_cut_table
+from axisline.report.cuts import error_histogram_figure, length_error_figure
+
 __all__ = ["report_section", "write_plots", "cut_table_markdown"]
 
 
@@ -42,29 +45,9 @@ def _f(x: Any, fmt: str = ".3f", none: str = "-") -> str:
 
 
 def cut_table_markdown(d: Mapping[str, Any]) -> str:
-    """One row per cut: target, actual, errors, line speed, position error, tolerance."""
-    lu = d["length_unit"]
-    marks = any(c.get("mark_offset") is not None for c in d["cuts"])
-    head = [
-        "cut", "t [s]", "kind", f"target [{lu}]", f"actual [{lu}]", f"error [{lu}]", "error [incr]",
-        f"line speed [{lu}/min]", "FS701 line speed", "position error [incr]", "constant speed",
-    ]
-    if marks:
-        head += [f"mark offset [{lu}]", "mark offset [incr]"]
-    head += ["tolerance [incr]", "ok"]
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    for c in d["cuts"]:
-        row = [
-            str(c["index"]), _f(c["time"], ".3f"), c["kind"], _f(c["target_length"], ".2f"), _f(c["actual_length"], ".3f"),
-            _f(c["error_lu"], "+.4f"), _f(c["error_counts"], "+.2f"), _f(c["line_speed"], ".0f"),
-            _f(c["line_speed_measured"], ".0f"), _f(c["following_error"], "+.2f"), _f(c["constant_speed"]),
-        ]
-        if marks:
-            row += [_f(c.get("mark_offset"), "+.4f"), _f(c.get("mark_offset_counts"), "+.2f")]
-        ok = c["in_tolerance"]
-        row += [_f(c["tolerance"], "g"), "-" if ok is None else ("yes" if ok else "**NO**")]
-        lines.append("| " + " | ".join(row) + " |")
-    return "\n".join(lines) + "\n"
+    """One row per cut: target, actual, errors, line speed, position error, tolerance (the
+    table shared with the CLM's flying cutoff, axisline.report.cuts)."""
+    return shared_cut_table(d["cuts"], d["length_unit"], "FS701 line speed")
 
 
 def _errors_text(errors: list[dict[str, Any]]) -> str:
@@ -159,20 +142,12 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
         ax.axhline(-d["tolerance"]["mark_counts"], color="tab:red", linestyle="--", linewidth=1)
         ax.set_ylabel("offset [carriage increments]")
     pieces = [c for c in cuts if c["error_counts"] is not None]
-    if pieces:
-        const = [c for c in pieces if c["constant_speed"]]
-        ramp = [c for c in pieces if not c["constant_speed"]]
-        width = 0.4 if marks else 0.8
-        shift = 0.2 if marks else 0.0
-        ax.bar([c["index"] + shift for c in const], [c["error_counts"] for c in const], width=width, color="tab:green",
-               label="length error, constant line speed")
-        ax.bar([c["index"] + shift for c in ramp], [c["error_counts"] for c in ramp], width=width, color="tab:orange",
-               label="length error, cut in a speed change")
-        if not marks:
-            for v, style, label in ((tol["constant_speed_counts"], "--", "tolerance (constant speed)"), (tol["ramp_counts"], ":", "tolerance (ramps)")):
-                ax.axhline(v, color="tab:red", linestyle=style, linewidth=1, label=label)
-                ax.axhline(-v, color="tab:red", linestyle=style, linewidth=1)
-            ax.set_ylabel("length error [carriage increments]")
+    if pieces:  # (shared with the CLM's flying cutoff, axisline.report.cuts)
+        tolerances = () if marks else ((tol["constant_speed_counts"], "--", "tolerance (constant speed)"),
+                                       (tol["ramp_counts"], ":", "tolerance (ramps)"))
+        length_error_figure(plt, ax, pieces, width=0.4 if marks else 0.8, shift=0.2 if marks else 0.0, tolerances=tolerances)
+        if marks:
+            ax.set_ylabel("offset [carriage increments]")
     ax.axhline(0.0, color="black", linewidth=0.5)
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("cut")
@@ -252,23 +227,9 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
             written.append(p)
 
     # 5. histogram of the length errors
-    errs = [c["error_counts"] for c in cuts if c.get("error_counts") is not None]
-    if errs:
-        fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
-        n_bins = max(5, min(40, int(np.sqrt(len(errs))) * 2))
-        ax.hist(errs, bins=n_bins, color="tab:green", edgecolor="black", linewidth=0.5)
-        v = tol["constant_speed_counts"]
-        ax.axvline(v, color="tab:red", linestyle="--", linewidth=1, label="tolerance (constant speed)")
-        ax.axvline(-v, color="tab:red", linestyle="--", linewidth=1)
-        ax.set_xlabel("length error [carriage increments]")
-        ax.set_ylabel("pieces")
-        ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
-        ax.set_title(f"length errors of {len(errs)} pieces: mean {np.mean(errs):.2f}, std {np.std(errs):.2f} increments")
-        path = out / "fs701_error_histogram.png"
-        fig.savefig(path, dpi=90)
-        plt.close(fig)
-        written.append(path)
+    hist = error_histogram_figure(plt, cuts, out / "fs701_error_histogram.png", tol["constant_speed_counts"])
+    if hist is not None:
+        written.append(hist)
     return written
 
 

@@ -1,0 +1,106 @@
+"""LMK and LMR, the flying cutoff's length commands corrected by the Raster 1 input (I0.01.7;
+manual LMK L2103-2117, LMR Examples 1/2 L2133-2171, A138 raster detection L4955; errata §2:
+LMR's own section is lost, commands.py C-LOST: ``LMK 1 length offset``, ``LMR 1 raster offset``).
+
+    op_lmk(rt, task, ins)    # LMK 1 001000.000 000400.000
+    op_lmr(rt, task, ins)    # LMR 1 000900.000 000400.000 (Fig. 5-15: marks 1000, light barrier 100, offset 300)
+
+The light barrier rides on the carriage (Figs. 5-15 / 5-16); the material point it sees is the
+point under the tool shifted by its offset, which the programmed distances contain (Offset
+Distance = Offset +- Light Barrier Offset). So a raster at material point ``r`` (the point under
+the tool then) puts the cut at ``r + offset distance``.
+
+Decisions (spec line -> choice, why)
+------------------------------------
+1. A138 raster detection "by level or by edge" (L4955, which digit is which is lost) -> 0 = a
+   rising edge, 1 = the level (the input at 1 is a raster). An input wired to a print-mark
+   sensor (``"I0.01.7" = "marks"``) gives the sub-cycle moment of its edge: the point is
+   interpolated between the two NC cycles (as the SRM / SRP raster latch, registration.py);
+   a plain input is taken at the cycle it is read. test_raster_by_edge_or_by_level,
+   test_lmr_cuts_at_the_marks.
+2. L2105-2107 LMK -> the length counts as LML's; a raster seen from the de-synchronization (the
+   EOS before) until the synchronization puts the cut at raster + offset distance instead, once
+   per instruction (the first raster). test_lmk_corrects_the_length_on_a_raster.
+3. LMR (section lost; Examples 1/2: Raster Distance = mark distance -+ light barrier offset,
+   Offset Distance = offset +- light barrier offset) -> the cut is offset distance after the
+   raster; the raster distance is the material from the previous raster's mark (the point under
+   the tool when it was seen, less nothing: the offsets are in the distances) to the next one:
+   when the material under the tool has passed the previous raster by the raster distance and
+   no raster came, the raster is taken there (a missing mark does not stop the line, the pieces
+   keep the mark distance). The first LMR of a run waits for a real raster.
+   test_lmr_cuts_at_the_marks, test_lmr_goes_on_over_a_missing_mark.
+4. In this simulation the print-mark sensor is stationary at the tool's home; it is the
+   carriage-mounted light barrier while the carriage is at home, where a raster is normally seen
+   (LMK L2109: "If the raster signal is only triggered when the carriage is in the home
+   position"). test_lmr_cuts_at_the_marks.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
+
+from .errors import ClmError
+from .operands import Operand
+
+if TYPE_CHECKING:
+    from .nc import NcTask
+
+__all__ = ["RasterWatch", "op_lmk", "op_lmr", "RASTER_1"]
+
+RASTER_1 = Operand("I", 0, 1, 7)
+
+
+class RasterWatch:
+    """Raster 1 as the flying cutoff sees it: `seen()` returns the material point of a raster of
+    this cycle (decision 1), else None."""
+
+    def __init__(self, rt: Any, level: bool) -> None:
+        self.rt = rt
+        self.level = level
+        self._before = rt.read_bit(RASTER_1)
+        self._previous_point: Fraction | None = None
+        self.last: Fraction | None = None  # the point of the last raster (LMR's reference)
+
+    def seen(self, point: Fraction | None) -> Fraction | None:
+        rt = self.rt
+        previous, self._previous_point = self._previous_point, point
+        sensor = rt.registration.raster_sensors.get((0, 1, 7))
+        if sensor is not None and not self.level:
+            for edge in sensor.edges:  # the edges of the plant cycle just ended
+                if edge.rising and point is not None and previous is not None:
+                    return previous + (point - previous) * Fraction(edge.fraction)
+            return None
+        now = rt.read_bit(RASTER_1)
+        before, self._before = self._before, now
+        if point is None:
+            return None
+        if self.level:
+            return point if now else None
+        return point if (now and not before) else None
+
+
+def _length(rt: Any, ins: Any, index: int) -> Fraction:
+    return Fraction(rt.number(ins, index), 1000)
+
+
+def op_lmk(rt: Any, task: NcTask, ins: Any) -> int | None:
+    """LMK 1 length offset (decision 2)."""
+    cutoff = rt.cutoff
+    if cutoff is None:
+        raise ClmError("0A", "LMK needs axis 1 in flying cutoff (A100 mode 5, L2115)")
+    rt.axis(ins, 0)
+    if task.wait is None:
+        cutoff.raster_mode = ("LMK", _length(rt, ins, 2), None)
+    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1)) else None
+
+
+def op_lmr(rt: Any, task: NcTask, ins: Any) -> int | None:
+    """LMR 1 raster offset (decision 3)."""
+    cutoff = rt.cutoff
+    if cutoff is None:
+        raise ClmError("0A", "LMR needs axis 1 in flying cutoff (A100 mode 5)")
+    rt.axis(ins, 0)
+    if task.wait is None:
+        cutoff.raster_mode = ("LMR", _length(rt, ins, 2), _length(rt, ins, 1))
+    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1), wait_for_raster=True) else None
