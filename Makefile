@@ -23,7 +23,7 @@ BUILD_INPUTS := pyproject.toml constraints.txt setup.py compiled_modules.txt $(C
 # .venv is compiled unless AXISLINE_COMPILE=0; the stamp records which, and a switch re-installs.
 BUILD_MODE := compile=$(if $(filter 0,$(strip $(AXISLINE_COMPILE))),0,1)
 
-.PHONY: demo test test-pure bench setup setup-pure clean
+.PHONY: demo test test-pure bench setup setup-pure clean dist
 ifneq ($(BUILD_MODE),$(shell cat $(STAMP) 2>/dev/null))
 .PHONY: $(STAMP)
 endif
@@ -64,6 +64,11 @@ setup-pure: $(PURE_STAMP)
 test-pure: $(PURE_STAMP)
 	AXISLINE_COMPILE=0 $(PURE_BIN)/python -m pytest
 
+# a wheel (compiled) and an sdist in dist/, built by PyPA's build in an isolated environment
+dist: $(STAMP)
+	$(BIN)/python -m pip install --quiet build
+	$(BIN)/python -m build --outdir dist
+
 clean:
-	rm -rf $(VENV) $(PURE_VENV) out .pytest_cache build/mypyc
+	rm -rf $(VENV) $(PURE_VENV) out .pytest_cache build/mypyc dist
 	find src -name '*.so' -delete
