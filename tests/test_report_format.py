@@ -62,3 +62,12 @@ def test_warnings_name_a_saturated_drive_and_an_unlimited_stroke(tmp_path):
     assert "## Warnings" in text and "saturated" in text
     m = Machine.from_file(EXAMPLES / "positioning.toml")
     assert m.summary(m.run())["warnings"] == []
+
+
+def test_a_device_that_limits_its_axes_gets_no_stroke_warning():
+    """The CLM monitors Ax03/Ax04 (or knows a feed roll endless): its carriage and feed roll get
+    no "no stroke limit" warning, while the FS701 example's carriage (no limit anywhere) does."""
+    m = Machine.from_file(EXAMPLES / "roll_feed_clm.toml", )
+    assert not any("no stroke limit" in w for w in m.summary(m.run())["warnings"])
+    m = Machine.from_file(EXAMPLES / "flying_shear.toml")
+    assert any("no stroke limit" in w for w in m.summary(m.run())["warnings"])

@@ -617,6 +617,7 @@ class Machine:
         can do (the +-10 V command saturated, or beyond its speed limit), and linear axes with
         no stroke limit, with the travel they made."""
         out = []
+        limited = self.device.limited_axes() if self.device is not None else set()
         for name, u in self.units.items():
             unit = u.config.unit
             if u.over_cycles:
@@ -628,7 +629,7 @@ class Machine:
                     f"first at t = {u.first_over_cycle * self.period:.3f} s): {asked}; max following error "
                     f"{u.max_following_error:.4g} {unit}"
                 )
-            travel = _travel_warning(name, u)
+            travel = None if name in limited else _travel_warning(name, u)
             if travel is not None:
                 out.append(travel)
         return out

@@ -99,6 +99,12 @@ class Personality(ABC):
     def register_endpoint(self) -> RegisterEndpoint:
         raise NotImplementedError(f"{self.name} offers no register image")
 
+    def limited_axes(self) -> set[str]:
+        """Machine axes whose travel the device accounts for: it limits them itself (its own
+        travel limits) or knows them endless (a feed roll, a rotary axis); the run's "no stroke
+        limit" warning leaves them out."""
+        return set()
+
     def stop(self) -> bool:
         """Shutdown (Ctrl-C, SIGTERM): stop the device's motion with its own stop ramps.
 

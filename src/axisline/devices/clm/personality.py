@@ -398,6 +398,11 @@ class ClmPersonality(Personality):
 
     # -- persistence and reporting -------------------------------------------------------------
 
+    def limited_axes(self) -> set[str]:
+        """The CLM accounts for the travel of its axes: a linear one (Ax00 type 1) by Ax03/Ax04
+        once referenced, a rotary one or a table is endless (axis.py decision 15)."""
+        return set(self.config.axes)
+
     def byte_endpoint(self) -> Any:
         """The X6 serial protocol (`serial`) on this CLM's runtime, for `serve --serial-tcp /
         --serial-pty`: each connection takes its own session; writes need `network_writes`; an
