@@ -86,7 +86,7 @@ class MasterEncoder:
         self._origin = int(master.counts)
         self.counts = 0  # since power on, in the direction of C001
         self._key: tuple[Any, ...] | None = None
-        self._param_cache: tuple[tuple[Any, ...], tuple[int, int, Fraction]] | None = None
+        self._param_cache: tuple[Any, int, tuple[int, int, Fraction]] | None = None
         self._scale = Fraction(0)
         axis = rt.axes.get(number)  # the measuring wheel of axis `number` (L4228)
         attach = getattr(axis, "attach_wheel", None)
@@ -98,15 +98,14 @@ class MasterEncoder:
 
     def _params(self) -> tuple[int, int, Fraction]:
         p = self.rt.memory.parameters
-        data, kind, constant = self._ids
-        values = (p.get(data), p.get(kind), p.get(constant))
         cached = self._param_cache
-        if cached is not None and cached[0][0] is values[0] and cached[0][1] is values[1] and cached[0][2] is values[2]:
-            return cached[1]  # (a stored parameter is replaced, never changed in place)
-        graduation = int(values[0]["graduation"])
-        direction = int(values[1]["encoder_direction"])
-        feed = Fraction(str(values[2].number("feed_constant")))
-        self._param_cache = (values, (graduation, direction, feed))
+        if cached is not None and cached[0] is p and cached[1] == p.version:
+            return cached[2]  # (read up to four times a cycle; parameters change in Parameter mode)
+        data, kind, constant = self._ids
+        graduation = int(p.get(data)["graduation"])
+        direction = int(p.get(kind)["encoder_direction"])
+        feed = Fraction(str(p.get(constant).number("feed_constant")))
+        self._param_cache = (p, p.version, (graduation, direction, feed))
         return graduation, direction, feed
 
     @property

@@ -405,10 +405,14 @@ class ParameterSet:
 
     def __init__(self) -> None:
         self._values: dict[str, ParamValue] = dict(_DEFAULTS)
+        #: counts every store: a reader that derives values per cycle (master_encoder) keeps them
+        #: while the version stays (stored values are replaced, never changed in place)
+        self.version = 0
 
     def reset(self) -> None:
         """Every parameter to its default (``!sCSETPA``, spec §8.6)."""
         self._values = dict(_DEFAULTS)
+        self.version += 1
 
     def copy(self) -> ParameterSet:
         other = ParameterSet()
@@ -425,6 +429,7 @@ class ParameterSet:
         """Store `pid`; `value` is its data (``'0010.00000'``) or a ParamValue. Ranges are `check`'s."""
         stored = parse_data(pid, value) if isinstance(value, str) else parse_data(pid, format_data(pid, value))
         self._values[pid] = stored
+        self.version += 1
         return stored
 
     def data(self, pid: str) -> str:
@@ -633,6 +638,7 @@ def read_parameter_text(text: str, source: str = "parameters") -> tuple[Paramete
         if pid in origin:
             findings.append(Finding(pid, INVALID, f"{pid} is written twice (line {origin[pid]} and here); the later one is kept", "warning", at))
         params._values[pid] = value
+        params.version += 1
         origin[pid] = lineno
     for error in params.errors():
         line_of = origin.get(error.where or "")
