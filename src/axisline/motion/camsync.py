@@ -18,7 +18,15 @@ h = 1, h' = h'' = 0 at u = 1):
     decoupling: s = curve(x) + (S_0 - curve(x)) h(u),  u = (x - x_A) / (M_B - M_A)
 
 so position, velocity and acceleration are continuous at both ends whatever the master
-speed (a master that slows down slows the coupling with it). Positions M_E, M_S, M_A, M_B
+speed (a master that slows down slows the coupling with it).
+
+Acceleration set point (issue 16): an encoder master (motion.master.EncoderMaster) moves in
+whole counts, and the change of its counted speed per cycle is count noise (one count per
+cycle squared); the follower takes vm and am of the acceleration from an observer of the
+counts (motion.master_observer), position and velocity stay the master's own. On a point
+table, whose interpolation puts the acceleration into impulses at the points, s'' is the set
+points' second difference (PointTable.set_point_acceleration). Test:
+tests/test_plots_first_hour.py::test_cam_follower_on_a_wheel_has_the_laws_acceleration. Positions M_E, M_S, M_A, M_B
 are positions within the master cycle; the coupling starts at the next time the master
 passes M_E going forward.
 """
@@ -30,6 +38,8 @@ from enum import Enum
 from typing import Protocol
 
 from .curve import CamCurve
+from .master import EncoderMaster
+from .master_observer import MasterObserver
 
 
 class MasterReading(Protocol):
@@ -96,6 +106,15 @@ class CamFollower:
         self._pending: tuple[float, float] | None = None  # decoupling span waiting for M_A
         self._stop = 0.0  # where the pending decoupling stops the slave
         self.p = self.v = self.a = 0.0
+        # an encoder master moves in whole counts: the acceleration set point takes its speed and
+        # acceleration from an observer of the counts, not from their differences (issue 16)
+        self._observer: MasterObserver | None = None
+        self._counts = 0
+        if isinstance(master, EncoderMaster):
+            self._observer = MasterObserver(master.period)
+            self._counts = master.counts
+        # a point table's set points: its acceleration between them (PointTable.set_point_acceleration)
+        self._point_acc = getattr(curve, "set_point_acceleration", None)
 
     # -- the curve in slave units ------------------------------------------------------
 
@@ -177,6 +196,14 @@ class CamFollower:
         m = self.master
         x = m.position - self.master_offset
         vm, am = m.velocity, m.acceleration
+        va, aa = vm, am  # master speed and acceleration for the acceleration set point
+        obs = self._observer
+        if obs is not None:
+            counts = m.counts
+            obs.update(counts - self._counts)
+            self._counts = counts
+            cpu = m.counts_per_unit
+            va, aa = obs.velocity / cpu, obs.acceleration / cpu
         state = self.state
         if self._pending is not None and state is CamState.SYNCHRONOUS and x >= self._pending[0]:
             self._x0, self._x1 = self._pending
@@ -190,6 +217,9 @@ class CamFollower:
         if state is CamState.DECOUPLED:
             return self._s0, 0.0, 0.0
         s, ds, dds = self.curve_state(x)
+        if self._point_acc is not None:
+            period = self.curve.master_period
+            dds = self._point_acc(x - math.floor(x / period) * period)
         if state is CamState.SYNCHRONOUS:
             p, dp, ddp = s, ds, dds
         else:
@@ -213,5 +243,5 @@ class CamFollower:
                     self.state = CamState.DECOUPLED
                     p, dp, ddp = self._s0, 0.0, 0.0
         # chain rule: master coordinate -> time
-        self.p, self.v, self.a = p, dp * vm, ddp * vm * vm + dp * am
+        self.p, self.v, self.a = p, dp * vm, ddp * va * va + dp * aa
         return self.p, self.v, self.a

@@ -13,6 +13,7 @@ A cut record is a dict with the keys the FS701's `CutRecord.as_dict()` has:
 `actual_length` is None (or nan) for a cut without a piece (the first cut of an FS701 run).
 
     job_json(device_summary)                       # {"cuts": [...], "summary": {...}} for run --json
+    line_speed_unit(length_unit)                   # (factor from LU/min, "m/min") for tables and figures
     cut_table_markdown(cuts, length_unit, ...)     # the Markdown table of report.md
     length_error_figure(cuts, ..., path)           # bar chart of every piece's error
     error_histogram_figure(cuts, ..., path)        # histogram of the errors
@@ -24,7 +25,22 @@ import math
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-__all__ = ["job_json", "cut_table_markdown", "length_error_figure", "error_histogram_figure"]
+__all__ = ["job_json", "line_speed_unit", "cut_table_markdown", "length_error_figure", "error_histogram_figure"]
+
+# a line's speed is read in m/min on the machine (FS701 register 0x0B08 is LU/min, the CLM's
+# V011 and line speed parameters are per minute): the length units that convert to metres
+_METRES_PER_UNIT = {"mm": 1e-3, "cm": 1e-2, "dm": 1e-1, "m": 1.0}
+_FEET_PER_UNIT = {"in": 1.0 / 12.0, "inch": 1.0 / 12.0, "ft": 1.0}
+
+
+def line_speed_unit(length_unit: str) -> tuple[float, str]:
+    """(factor, unit) to show a line speed given in length units per minute: m/min for metric
+    lengths, ft/min for inches and feet, else the length unit per minute (factor 1)."""
+    if length_unit in _METRES_PER_UNIT:
+        return _METRES_PER_UNIT[length_unit], "m/min"
+    if length_unit in _FEET_PER_UNIT:
+        return _FEET_PER_UNIT[length_unit], "ft/min"
+    return 1.0, f"{length_unit}/min"
 
 
 def _num(x: Any) -> float | None:
@@ -83,10 +99,12 @@ def cut_table_markdown(cuts: Iterable[Mapping[str, Any]], length_unit: str, meas
     """One row per cut: target, actual, errors, line speed, position error (and tolerance)."""
     cuts = list(cuts)
     lu = length_unit
+    k, speed_unit = line_speed_unit(lu)
+    speed_fmt = ".2f" if k < 1.0 else ".0f"  # m/min to the cm/min; LU/min as the device shows them
     marks = any(c.get("mark_offset") is not None for c in cuts)
     head = [
         "cut", "t [s]", "kind", f"target [{lu}]", f"actual [{lu}]", f"error [{lu}]", "error [incr]",
-        f"line speed [{lu}/min]", measured_speed, "position error [incr]", "constant speed",
+        f"line speed [{speed_unit}]", f"{measured_speed} [{speed_unit}]", "position error [incr]", "constant speed",
     ]
     if marks:
         head += [f"mark offset [{lu}]", "mark offset [incr]"]
@@ -96,8 +114,8 @@ def cut_table_markdown(cuts: Iterable[Mapping[str, Any]], length_unit: str, meas
     for c in cuts:
         row = [
             str(c["index"]), _f(c["time"], ".3f"), str(c["kind"]), _f(c["target_length"], ".2f"), _f(c["actual_length"], ".3f"),
-            _f(c["error_lu"], "+.4f"), _f(c["error_counts"], "+.2f"), _f(c["line_speed"], ".0f"),
-            _f(c.get("line_speed_measured"), ".0f"), _f(c.get("following_error"), "+.2f"), _f(c.get("constant_speed")),
+            _f(c["error_lu"], "+.4f"), _f(c["error_counts"], "+.2f"), _f(_scaled(c.get("line_speed"), k), speed_fmt),
+            _f(_scaled(c.get("line_speed_measured"), k), speed_fmt), _f(c.get("following_error"), "+.2f"), _f(c.get("constant_speed")),
         ]
         if marks:
             row += [_f(c.get("mark_offset"), "+.4f"), _f(c.get("mark_offset_counts"), "+.2f")]
@@ -106,6 +124,10 @@ def cut_table_markdown(cuts: Iterable[Mapping[str, Any]], length_unit: str, meas
             row += [_f(c.get("tolerance"), "g"), "-" if ok is None else ("yes" if ok else "**NO**")]
         lines.append("| " + " | ".join(row) + " |")
     return "\n".join(lines) + "\n"
+
+
+def _scaled(x: Any, k: float) -> Any:
+    return x * k if isinstance(x, (int, float)) and not isinstance(x, bool) else x
 
 
 def length_error_figure(plt: Any, ax: Any, cuts: list[Mapping[str, Any]], *, width: float = 0.8, shift: float = 0.0,

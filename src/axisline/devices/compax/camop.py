@@ -187,6 +187,16 @@ wins over the spec; each has a test in tests/devices/compax/test_camop*.py):
   bus cannot be checked against. A HEDA master (P188 != 0, or P243 bit 1 "passive slave")
   refuses LOOP with E_NOT_AVAILABLE (107); P31 = 9 with P188 = 0 stays the static I16 enable
   of the encoder / time base. Test: test_heda_master_is_not_modelled.
+* D24 Acceleration set point (§1.3 "The position set points taken from the curve are
+  differentiated", the differentiation's filter is [GAP]; issue 16): position and speed set
+  points stay the device's per-cycle values (the speed with P68), but the acceleration, which
+  only the trace and its jerk show, is the cam law a = F''·U'^2 + F'·U'' with F'' the set
+  points' second difference (`PointTable.set_point_acceleration`) and U', U'' from a tracking
+  observer of the counted master increments (`motion.master_observer`): a double difference
+  of whole increments per 1 ms gave +-7e4 deg/s^2 of noise on the example's knife. The
+  observer takes the master at the speed of the first whole cycle counted after the enabling
+  (a gated count starts at the encoder's speed). Test:
+  tests/test_plots_first_hour.py::test_compax_knife_acceleration_is_the_cam_law_not_count_noise.
 """
 
 from __future__ import annotations
@@ -202,6 +212,7 @@ from axisline.motion.cam import FRACTION_ONE, PointTable
 from axisline.motion.camsync import smooth_step
 from axisline.motion.camswitch import AuxTrack
 from axisline.motion.homing import DirectHoming, HomingProcedure
+from axisline.motion.master_observer import MasterObserver
 
 __all__ = [
     "CamOperation",
@@ -462,6 +473,9 @@ class CamOperation:
         self._limit_suspended = False
         self.posr_target = 0.0  # S49
         self._p = self._v = self._a = 0.0
+        # the acceleration set point's master speed/acceleration: observed, not differenced (issue 16)
+        self._master_obs = MasterObserver(self.period)
+        self._master_obs_start = False  # counting was enabled in the last cycle
         self._set_point = 0.0  # S47 (absolute frame)
         self._s45 = 0.0
         self._cycle = 0
@@ -510,6 +524,10 @@ class CamOperation:
         """(F(u), dF/du) of the selected curve."""
         s, ds, _, _ = self.curve.table.eval(u)  # type: ignore[union-attr]
         return s, ds
+
+    def _ddf(self, u: float) -> float:
+        """d2F/du2 of the set points (PointTable.set_point_acceleration), for the acceleration."""
+        return self.curve.table.set_point_acceleration(u)  # type: ignore[union-attr]
 
     def _accept_p36(self) -> None:
         self.p36 = float(param(self.params, 36))
@@ -795,7 +813,13 @@ class CamOperation:
             self._leave()
         chain.synchronous = self.state in _SYNCHRONOUS
         u_prev = chain.fraction
+        counting = chain.counting
         wraps = chain.update(cycle, self.input("I16"), i16_latch=i16_latch, zero_pulse=zero_pulse)
+        if self._master_obs_start and chain.counting:
+            self._master_obs.start(chain.delta)  # the first whole cycle counted: the encoder's speed
+        else:
+            self._master_obs.update(chain.delta)
+        self._master_obs_start = chain.counting and not counting  # (the enabling cycle counts from the latch)
         if self.label is not None:
             self.label.measure(u_prev, wraps, i14_edges)
         if self.curve is None:
@@ -1118,16 +1142,19 @@ class CamOperation:
         chain = self.chain
         inv = 1.0 / chain.scaled_cycle
         Ud = chain.velocity * inv  # master cycles / s
-        Udd = chain.acceleration * inv
+        # the acceleration: the cam law with the observed master (motion.master_observer)
+        Ud_a = self._master_obs.velocity * inv
+        Udd_a = self._master_obs.acceleration * inv
         base = self._base if self.loop_active else self.offset
         c = base + k * f
         dc = k * df
+        ddc = k * self._ddf(u) if state is not CamState.IDLE else 0.0
         self._set_point = c
         self._s45 = 1000.0 * f
         if state is CamState.IDLE:
             return
         if state in _SYNCHRONOUS:
-            p, dp, ddp = c, dc, 0.0
+            p, dp, ddp = c, dc, ddc
         elif state is CamState.COUPLING or state is CamState.DECOUPLING:
             length = self._U1 - self._U0
             h, dh, ddh = smooth_step((self._U - self._U0) / length)
@@ -1137,12 +1164,12 @@ class CamOperation:
                 d = c - self._s0
                 p = self._s0 + d * h
                 dp = dc * h + d * dh
-                ddp = 2.0 * dc * dh + d * ddh
+                ddp = ddc * h + 2.0 * dc * dh + d * ddh
             else:
                 d = self._stop - c
                 p = c + d * h
                 dp = dc - dc * h + d * dh
-                ddp = -2.0 * dc * dh + d * ddh
+                ddp = ddc - ddc * h - 2.0 * dc * dh + d * ddh
         else:
             p, dp, ddp = self._hold, 0.0, 0.0
         self._p = p - self._R
@@ -1153,7 +1180,7 @@ class CamOperation:
             tf = p68 / 100.0 * 1e-3
             v = self._v + (v - self._v) * (self.period / (self.period + tf))
         self._v = v
-        self._a = ddp * Ud * Ud + dp * Udd
+        self._a = ddp * Ud_a * Ud_a + dp * Udd_a
         self._check_limits()
 
     def _check_limits(self) -> None:

@@ -5,14 +5,16 @@ DIR`) gets for an FS701 machine; `write_plots(device_summary, trace_data, out_di
 
     fs701_length_error.png   length error of every piece (carriage increments) against the
                              tolerances; print-mark cuts: the offset to the mark
-    fs701_line_speed.png     line speed (the material's and the FS701's measurement) with the
-                             cut instants
+    fs701_line_speed.png     line speed in m/min (the material's and the FS701's measurement)
+                             with the cut instants
     fs701_carriage.png       carriage position and velocity (set point and actual) against the
                              line speed, and the FS701's position error with the Cut Window
-    fs701_cycle.png          one cut cycle (the last complete one in the trace): line speed and
-                             carriage speed, and the position error, Ready to Cut -> Cut
-                             completed shaded (needs fs701.ready_to_cut; fs701.cut_state and
-                             fs701.cut_completed refine the window)
+    fs701_cycle.png          one whole cut cycle (the last complete one in the trace: from the
+                             start of the synchronisation over the cut to the end of the return):
+                             line and carriage speed (m/min), carriage position, position
+                             error; Ready to Cut -> Cut completed shaded, the cut and the print
+                             marks at the sensor marked (needs fs701.ready_to_cut; the
+                             carriage's command_velocity or fs701.cut_state find the ends)
     fs701_error_histogram.png  histogram of the length errors (carriage increments)
 
 The plots that need the scope use its channels (material.speed, <carriage>.command_position,
@@ -29,7 +31,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from axisline.report.cuts import cut_table_markdown as shared_cut_table
-from axisline.report.cuts import error_histogram_figure, length_error_figure
+from axisline.report.cuts import error_histogram_figure, length_error_figure, line_speed_unit
 
 __all__ = ["report_section", "write_plots", "cut_table_markdown"]
 
@@ -167,8 +169,8 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
     data = data or {}
     t = np.asarray(data["t"]) if "t" in data else None
 
-    # 2. line speed with the cut instants (m/min when the LU is the mm)
-    k, unit = (1e-3, "m/min") if lu == "mm" else (1.0, f"{lu}/min")
+    # 2. line speed with the cut instants, in m/min (the FS701's line speed register is LU/min)
+    k, unit = line_speed_unit(lu)
     fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     if t is not None and "fs701.line_speed" in data:
         ax.plot(t, np.asarray(data["fs701.line_speed"]) * k, label="FS701 line speed (#2, Sampling Time)", linewidth=0.6,
@@ -238,16 +240,31 @@ def _rising(x: np.ndarray) -> np.ndarray:
     return np.flatnonzero(x[1:] & ~x[:-1]) + 1
 
 
-def cycle_window(data: Mapping[str, np.ndarray]) -> tuple[int, int, int, int] | None:
-    """(start, ready, completed, end) sample indices of the last complete cut cycle: from the
-    approach start (Cut State leaves HOME) over Ready to Cut and Cut completed to home again.
-    Without fs701.cut_state: +-1 Ready-to-Cut duration around the synchronous phase."""
+def _carriage_velocity(data: Mapping[str, np.ndarray], carriage: str | None) -> np.ndarray | None:
+    if carriage is not None:
+        key = f"{carriage}.command_velocity"
+        return np.asarray(data[key]) if key in data else None
+    keys = [k for k in data if k.endswith(".command_velocity")]
+    return np.asarray(data[keys[0]]) if len(keys) == 1 else None
+
+
+def cycle_window(data: Mapping[str, np.ndarray], carriage: str | None = None) -> tuple[int, int, int, int] | None:
+    """(start, ready, completed, end) sample indices of the last complete cut cycle in the trace,
+    with a margin of 5 % of the cycle on either side of start and end.
+
+    A whole cycle: from the start of the synchronisation (the carriage set point leaves the start
+    position towards the cut: the last sample before Ready to Cut where it did not move in the
+    line's direction) over Ready to Cut and Cut completed to the end of the return (the set
+    point stops moving back). Needs fs701.ready_to_cut; the carriage's command_velocity
+    (`carriage`, or the only one in the trace) gives the start and the end, else fs701.cut_state
+    (HOME), else +-1 Ready-to-Cut duration around the synchronous phase."""
     if "fs701.ready_to_cut" not in data:
         return None
     rtc = np.asarray(data["fs701.ready_to_cut"]).astype(bool)
     n = len(rtc)
     rises = _rising(rtc)
     falls = np.flatnonzero(~rtc[1:] & rtc[:-1]) + 1
+    v = _carriage_velocity(data, carriage)
     for r in rises[::-1]:
         after = falls[falls > r]
         if len(after) == 0:
@@ -258,46 +275,72 @@ def cycle_window(data: Mapping[str, np.ndarray]) -> tuple[int, int, int, int] | 
             e = [i for i in range(int(r), f + 1) if cc[i] != cc[i - 1]]
             if e:
                 f = e[0]
-        if "fs701.cut_state" in data:
+        if v is not None and v[r] != 0.0:
+            forward = v * np.sign(v[r])  # > 0: with the line (a line running backwards too)
+            before = np.flatnonzero(forward[:r] <= 0.0)
+            back = np.flatnonzero(forward[f:] < 0.0)
+            if len(before) == 0 or len(back) == 0:
+                continue  # the start or the return is not in the trace
+            ret = f + int(back[0])
+            home = np.flatnonzero(forward[ret:] >= 0.0)
+            if len(home) == 0:
+                continue
+            s0, e0 = int(before[-1]), ret + int(home[0])
+        elif "fs701.cut_state" in data:
             cs = np.asarray(data["fs701.cut_state"]).astype(int)
-            home = 1
+            home_state = 1
             s0 = int(r)
-            while s0 > 0 and cs[s0 - 1] != home:
+            while s0 > 0 and cs[s0 - 1] != home_state:
                 s0 -= 1
             e0 = f
-            while e0 < n - 1 and cs[e0] != home:
+            while e0 < n - 1 and cs[e0] != home_state:
                 e0 += 1
-            if cs[e0] != home:
+            if cs[e0] != home_state:
                 continue  # the return is not complete in the trace
-            s0 = max(s0 - max((e0 - s0) // 10, 1), 0)
-            e0 = min(e0 + max((e0 - s0) // 10, 1), n - 1)
         else:
             span = max(f - int(r), 1)
-            s0, e0 = max(int(r) - span, 0), min(f + span, n - 1)
-        return s0, int(r), f, e0
+            return max(int(r) - span, 0), int(r), f, min(f + span, n - 1)
+        margin = max((e0 - s0) // 20, 1)
+        return max(s0 - margin, 0), int(r), f, min(e0 + margin, n - 1)
     return None
 
 
+def _mark_channel(d: Mapping[str, Any], data: Mapping[str, np.ndarray]) -> str | None:
+    """The print-mark sensor's trace channel ("<marks>.state") in Cutting Mode 2, if one."""
+    if str(d.get("cutting_mode")) != "2":
+        return None
+    axis_like = {k.rpartition(".")[0] for k in data if k.endswith(".command_position")}
+    keys = [k for k in data if k.endswith(".state") and k.rpartition(".")[0] not in axis_like | {"fs701"}]
+    return keys[0] if len(keys) == 1 else None
+
+
 def _cycle_plot(plt: Any, d: Mapping[str, Any], data: Mapping[str, np.ndarray], t: np.ndarray, path: Path) -> Path | None:
-    w = cycle_window(data)
+    car = d["carriage"]
+    w = cycle_window(data, car if f"{car}.command_velocity" in data else None)
     if w is None:
         return None
     s0, r, f, e0 = w
     sl = slice(s0, e0 + 1)
     tt = t[sl]
     lu = d["length_unit"]
-    car = d["carriage"]
-    fig, rows = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5), constrained_layout=True)
+    k, unit = line_speed_unit(lu)  # the FS701 thinks in LU/min: speeds in m/min
+    fig, rows = plt.subplots(3, 1, sharex=True, figsize=(9, 8.5), constrained_layout=True)
     ax = rows[0]
     if "material.speed" in data:
-        ax.plot(tt, np.asarray(data["material.speed"])[sl] * 60.0, label="line (plant)", color="black", linestyle="--", linewidth=1.0)
+        ax.plot(tt, np.asarray(data["material.speed"])[sl] * 60.0 * k, label="line (plant)", color="black", linestyle="--",
+                linewidth=1.0)
     if "fs701.line_speed" in data:
-        ax.plot(tt, np.asarray(data["fs701.line_speed"])[sl], label="line (FS701 #2)", color="tab:orange", linewidth=0.8)
+        ax.plot(tt, np.asarray(data["fs701.line_speed"])[sl] * k, label="line (FS701 #2)", color="tab:orange", linewidth=0.8)
     for key, label in ((f"{car}.command_velocity", "carriage set point"), (f"{car}.actual_velocity", "carriage actual")):
         if key in data:
-            ax.plot(tt, np.asarray(data[key])[sl] * 60.0, label=label, linewidth=1.2)
-    ax.set_ylabel(f"speed [{lu}/min]")
+            ax.plot(tt, np.asarray(data[key])[sl] * 60.0 * k, label=label, linewidth=1.2)
+    ax.set_ylabel(f"speed [{unit}]")
     ax = rows[1]
+    for key, label in ((f"{car}.command_position", "set point"), (f"{car}.actual_position", "actual")):
+        if key in data:
+            ax.plot(tt, np.asarray(data[key])[sl], label=label, linewidth=1.0)
+    ax.set_ylabel(f"carriage position [{lu}]")
+    ax = rows[2]
     if "fs701.position_error" in data:
         pe = np.asarray(data["fs701.position_error"])
         ax.plot(tt, pe[sl], linewidth=0.9, label="position error (#3)")
@@ -306,11 +349,22 @@ def _cycle_plot(plt: Any, d: Mapping[str, Any], data: Mapping[str, np.ndarray], 
             ax.set_title(f"Ready to Cut -> Cut completed: min {np.min(seg):.1f}, max {np.max(seg):.1f} increments", fontsize=9)
     ax.set_ylabel("position error [incr]")
     rows[-1].set_xlabel("time [s]")
-    for a in rows:
-        a.axvspan(t[r], t[f], color="tab:green", alpha=0.15, label="Ready to Cut -> Cut completed")
+    # the events of the cycle: the cut(s) and the print marks passing the sensor
+    cut_times = [c["time"] for c in d.get("cuts", []) if c.get("time") is not None and tt[0] <= c["time"] <= tt[-1]]
+    mark_key = _mark_channel(d, data)
+    mark_times = [float(t[i]) for i in _rising(np.asarray(data[mark_key])) if s0 <= i <= e0] if mark_key else []
+    for j, a in enumerate(rows):
+        first = j == 0  # the events are named once, in the top panel's legend
+        a.axvspan(t[r], t[f], color="tab:green", alpha=0.15, label="Ready to Cut -> Cut completed" if first else None)
+        for i, tc in enumerate(cut_times):
+            a.axvline(tc, color="tab:red", linewidth=1.2, label="cut" if first and i == 0 else None)
+        for i, tm in enumerate(mark_times):
+            a.axvline(tm, color="tab:purple", linestyle=":", linewidth=1.2,
+                      label=f"print mark at the sensor ({mark_key})" if first and i == 0 else None)
         a.grid(True, alpha=0.3)
-        a.legend(loc="upper right", fontsize=8)
-    fig.suptitle(f"one cut cycle ({t[s0]:.2f} - {t[e0]:.2f} s)")
+        if a.get_legend_handles_labels()[0]:
+            a.legend(loc="upper right", fontsize=7)
+    fig.suptitle(f"one cut cycle: synchronisation, cut, return ({t[s0]:.2f} - {t[e0]:.2f} s)")
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return path
