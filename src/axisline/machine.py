@@ -726,3 +726,10 @@ def _axis_kwargs(command: str, kwargs: dict[str, Any]) -> dict[str, Any]:
         out["direction"] = Direction[out["direction"].upper()]
     return out
 
+
+# Compiled, the public names get this source's docstrings and annotations back (help(),
+# inspect.signature); in plain Python this does nothing. See axisline/_docs.py.
+from axisline._docs import document as _document  # noqa: E402
+
+# hot: the scheduler's per-cycle tasks (bound methods taken from the class), left compiled-only
+_document(globals(), hot={"AxisUnit": ("sample", "loop")})

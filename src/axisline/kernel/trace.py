@@ -285,3 +285,11 @@ class Trace:
     def load_npz(path: str | os.PathLike[str]) -> Recording:
         """Read a saved trace: ``.data()``, ``.units``, ``.period_us`` as when it was saved."""
         return Recording.load_npz(path)
+
+
+# Compiled, the public names get this source's docstrings and annotations back (help(),
+# inspect.signature); in plain Python this does nothing. See axisline/_docs.py.
+from axisline._docs import document as _document  # noqa: E402
+
+# hot: called every cycle from interpreted code (devices), left compiled-only (no wrapper)
+_document(globals(), hot={"Trace": ("record",)})

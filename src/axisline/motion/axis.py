@@ -1149,3 +1149,11 @@ class Axis:
             f"Axis({self.name!r}, {self._state.value}, p={self._p:.6g} {self.unit}, v={self._v:.6g}, "
             f"fe={self._fe:.3g})"
         )
+
+
+# Compiled, the public names get this source's docstrings and annotations back (help(),
+# inspect.signature); in plain Python this does nothing. See axisline/_docs.py.
+from axisline._docs import document as _document  # noqa: E402
+
+# hot: called every cycle from interpreted code (devices), left compiled-only (no wrapper)
+_document(globals(), hot={"Axis": ("update_setpoint", "position_loop")})

@@ -756,3 +756,11 @@ def plan_velocity(shape: str, start: State, v_target: float, limits: Limits) -> 
     segs.extend(_velocity_segments(r, s, v_target, amax, dmax))
     end = _end_of(segs, start) if segs else start
     return Profile(shape, start, State(end.p, v_target), segs)
+
+
+# Compiled, the public names get this source's docstrings and annotations back (help(),
+# inspect.signature); in plain Python this does nothing. See axisline/_docs.py.
+from axisline._docs import document as _document  # noqa: E402
+
+# hot: called every cycle from interpreted code (devices), left compiled-only (no wrapper)
+_document(globals(), hot={"Profile": ("sample",)})
