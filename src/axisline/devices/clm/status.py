@@ -31,7 +31,9 @@ status  reply body (``_`` = blank)                                   source
 61      ``61_mt.nn_bbbbbbbb_``  one byte of I/Q/M, bit 7 first       L7296-7315
 63      ``63_<16/32/48/64 characters>_``  TXT mode 0 lines v..b      L7317-7335
 47      ``47_0_+0090.00_``  master encoder 1 in 1/min (master_encoder.py 5) L7175-7193
-09 54   not yet available in axisline (decision 5)
+09      ``09__evmmmmm.mmm_vnnnnnn.nnn_``  measuring wheel, motor (measuring_wheel.py 8)
+41      ``41_emmmmmm.mmm_``  axis 1 at the last raster (registration.py 6)
+54      cutoff material / product length (cutoff.py decision 8)      L7251-7271
 ======  ==========================================================  =====================
 
 Decisions (spec line -> choice, why)
@@ -58,13 +60,14 @@ Decisions (spec line -> choice, why)
    (10 V = +10000) after the 12-bit conversion and B017's averaging (analog.py decisions 1, 2);
    ``+00000`` on a runtime without the plant's inputs. Tests: ``test_status_42_45_48_49``,
    ``tests/devices/clm/test_analog_status.py::test_status_49_and_45_in_millivolts``.
-5. C-NOT-AVAILABLE, issue 12 ("answer the CLM's 'not available' until then"): Status 47 (and 09,
-   the measuring wheel's position) answer error 10 "M-Wheel Param Error" when the measuring
-   wheel is not set up, as L7193 says the CLM does for 47 (C000 without a resolution; for 09:
-   axis 1 not in measuring-wheel mode 3/4); with the wheel set up (47: but no master encoder 1
-   wired on the plant, ``device.master_encoder_1``, else its value), and for 54 (cutoff length counters, "only supported for Flying Cutoff", L7271)
-   without axis 1 in flying cutoff (with it: cutoff.py decision 8), error 09 "Status # illegal" ("status information that was not present in the
-   CLM", L6815): a host reads that the value does not exist, not that a parameter is wrong.
+5. C-NOT-AVAILABLE: Status 47 answers error 10 "M-Wheel Param Error" when master encoder 1 is
+   not set up, as L7193 says (C000 without a resolution), and 09 "Status # illegal" ("status
+   information that was not present in the CLM", L6815) when it is set up but no encoder is
+   wired on the plant (``device.master_encoder_1``); Status 09 is measuring_wheel.py's
+   (decision 8: 10 without axis 1 in mode 3/4, 09 without a wheel); 54 (cutoff length
+   counters, "only supported for Flying Cutoff", L7271) is 09 without axis 1 in flying cutoff
+   (with it: cutoff.py decision 8): a host reads that the value does not exist, not that a
+   parameter is wrong.
    Status 01 itself is 09 ("can *not* be queried", L6791). Test:
    ``test_status_not_available``.
 6. C-STATUS-53, L7242 prints 14 ``t``: the text field is 16 characters (a CTA line, and TXT's
@@ -92,6 +95,7 @@ from __future__ import annotations
 import math
 import re
 from decimal import Decimal
+from collections.abc import Callable
 from typing import Any
 
 from .errors import FAULTS, ClmError, serial_code
@@ -104,7 +108,6 @@ __all__ = ["FIRMWARE", "FIRMWARE_SHORT", "HARDWARE", "STATUS_NUMBERS", "status_b
 FIRMWARE = "FWA-CLM1.4-LAP-05VRS"  # Status 05: 20 characters
 HARDWARE = "CLM01.4-P-E-4-B"  # Status 19 (L7006)
 FIRMWARE_SHORT = "CLM1.4-LAP-05VRS"  # Status 19: at most 16 characters
-NOT_AVAILABLE = (9, 41, 47, 54)
 STATUS_NUMBERS = (0, 2, 3, 4, 5, 8, 9, 10, 19, 39, 40, 41, 42, 43, 44, 45, 47, 48, 49, 53, 54, 60, 61, 63)
 _SCALE = 1_000_000
 _VAR_IN_TEXT = re.compile(r"V(\d{3})")
@@ -289,37 +292,24 @@ def _status_63(rt: Any, args: list[str]) -> str:
     return "63 " + "".join(_text16(rt.text_lines[i]) for i in range(first - 1, last)) + " "
 
 
-def _measuring_wheel(rt: Any, number: int) -> ClmError:
-    params = rt.memory.parameters
-    if number == 47:
-        set_up = int(params.get("C000")["graduation"]) != 0
-    else:
-        set_up = params.axis_mode(1) in (3, 4)
-    if not set_up:
-        return ClmError(serial_code(10), f"Status {number:02d}: the measuring wheel is not set up (C000 / A100)")
-    if number == 47:
-        return ClmError(serial_code(9), "Status 47: master encoder 1 is not connected on the plant (device.master_encoder_1)")
-    return ClmError(serial_code(9), f"Status {number:02d}: the measuring wheel is part 3 of axisline's CLM, not yet available")
+def _no_master_encoder(rt: Any) -> ClmError:
+    """Status 47 without master encoder 1: 10 when C000 has no resolution, else 09."""
+    if int(rt.memory.parameters.get("C000")["graduation"]) == 0:
+        return ClmError(serial_code(10), "Status 47: master encoder 1 is not set up (C000)")
+    return ClmError(serial_code(9), "Status 47: master encoder 1 is not connected on the plant (device.master_encoder_1)")
+
+
+# status number -> (the formatter of one value, the axes / analog inputs of its two fields)
+_PAIRS: dict[int, tuple[Callable[[Any, int], str], int, int]] = {}
 
 
 def status_body(rt: Any, number: int, args: list[str]) -> str:
     """The reply body of status `number` (without ``X`` and the station); ClmError with the
     Status 01 error the CLM answers instead."""
-    if number in (0, 44):
-        a, b = (1, 2) if number == 0 else (3, 4)
-        return f"{number:02d} {_position(rt, a)} {_position(rt, b)} "
-    if number in (10, 43):
-        a, b = (1, 2) if number == 10 else (3, 4)
-        return f"{number:02d} {_lag(rt, a)} {_lag(rt, b)} "
-    if number in (3, 40):
-        a, b = (1, 2) if number == 3 else (3, 4)
-        return f"{number:02d} {_increments(rt, a)} {_increments(rt, b)} "
-    if number in (42, 48):
-        a, b = (3, 4) if number == 42 else (1, 2)
-        return f"{number} {_velocity(rt, a)} {_velocity(rt, b)} "
-    if number in (45, 49):
-        a, b = (3, 4) if number == 45 else (1, 2)
-        return f"{number} {_analog(rt, a)} {_analog(rt, b)} "
+    pair = _PAIRS.get(number)
+    if pair is not None:
+        value, a, b = pair
+        return f"{number:02d} {value(rt, a)} {value(rt, b)} "
     if number == 2:
         return f"02 {_task_fields(rt, 1)} "
     if number == 8:
@@ -344,7 +334,7 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
     if number == 47:
         me = getattr(rt, "master_encoder", None)
         if me is None or int(rt.memory.parameters.get("C000")["graduation"]) == 0:
-            raise _measuring_wheel(rt, number)
+            raise _no_master_encoder(rt)
         return f"47 0 {_fixed(max(-9999.99, min(9999.99, me.rpm)), 4, 2)} "  # master_encoder.py decision 5
     if number == 9:  # the measuring wheel and the motor encoder of axis 1 (measuring_wheel.py decision 8)
         from .measuring_wheel import status_09
@@ -362,3 +352,8 @@ def status_body(rt: Any, number: int, args: list[str]) -> str:
     if number == 1:
         raise ClmError(serial_code(9), "Status 01 is sent by the CLM after a transmission error; it cannot be queried (L6791)")
     raise ClmError(serial_code(9), f"Status {number:02d} is not a status of the CLM")
+
+
+_PAIRS.update({0: (_position, 1, 2), 44: (_position, 3, 4), 10: (_lag, 1, 2), 43: (_lag, 3, 4),
+               3: (_increments, 1, 2), 40: (_increments, 3, 4), 42: (_velocity, 3, 4), 48: (_velocity, 1, 2),
+               45: (_analog, 3, 4), 49: (_analog, 1, 2)})
