@@ -50,24 +50,28 @@ def test_a_device_driven_run_has_no_empty_job_line(tmp_path):
 
 def test_warnings_name_a_saturated_drive_and_an_unlimited_stroke(tmp_path):
     """Issue 16: the print-mark example's return stroke holds the FS701's command at the +-10 V
-    limit (19 mm following error) and its carriage has no stroke limit: both are warnings of the
-    run summary and the report; the positioning example (software limits, no saturation) has none."""
+    limit (19 mm following error): a warning of the run summary and the report; a carriage with
+    no stroke limit (cam_sync's) is one too; the positioning example (software limits, no
+    saturation) has none."""
     m = Machine.from_file(EXAMPLES / "flying_shear_printmark.toml")
     summary = m.summary(m.run())
     warnings = summary["warnings"]
     saturated = [w for w in warnings if "saturated" in w]
     assert len(saturated) == 1 and "axis 'carriage'" in saturated[0] and "+-10 V" in saturated[0]
-    assert any("no stroke limit" in w and "axis 'carriage'" in w for w in warnings)
+    assert not any("no stroke limit" in w for w in warnings)  # its carriage has software limits
     text = write_report(summary, tmp_path, []).read_text()
     assert "## Warnings" in text and "saturated" in text
+    m = Machine.from_file(EXAMPLES / "cam_sync.toml")  # a carriage with no limit anywhere
+    warnings = m.summary(m.run())["warnings"]
+    assert any("no stroke limit" in w and "axis 'carriage'" in w for w in warnings)
     m = Machine.from_file(EXAMPLES / "positioning.toml")
     assert m.summary(m.run())["warnings"] == []
 
 
 def test_a_device_that_limits_its_axes_gets_no_stroke_warning():
     """The CLM monitors Ax03/Ax04 (or knows a feed roll endless): its carriage and feed roll get
-    no "no stroke limit" warning, while the FS701 example's carriage (no limit anywhere) does."""
+    no "no stroke limit" warning, while cam_sync's carriage (no limit anywhere) does."""
     m = Machine.from_file(EXAMPLES / "roll_feed_clm.toml", )
     assert not any("no stroke limit" in w for w in m.summary(m.run())["warnings"])
-    m = Machine.from_file(EXAMPLES / "flying_shear.toml")
+    m = Machine.from_file(EXAMPLES / "cam_sync.toml")
     assert any("no stroke limit" in w for w in m.summary(m.run())["warnings"])
