@@ -613,78 +613,16 @@ class Machine:
     # -- reporting ----------------------------------------------------------------------
 
     def warnings(self) -> list[str]:
-        """What a commissioning engineer must see after a run: a drive asked for more than it
-        can do (the +-10 V command saturated, or beyond its speed limit), and linear axes with
-        no stroke limit, with the travel they made."""
-        out = []
-        limited = self.device.limited_axes() if self.device is not None else set()
-        for name, u in self.units.items():
-            unit = u.config.unit
-            if u.over_cycles:
-                asked = (f"asked {u.peak_request:.6g} {unit}/s of a drive that reaches {u.reach:.6g} {unit}/s"
-                         if abs(u.peak_request) > u.reach * (1.0 + 1e-9) else
-                         f"held at the +-10 V limit ({u.peak_request:.6g} {unit}/s nominal): the loop wanted more than the drive gives")
-                out.append(
-                    f"axis {name!r}: the drive command saturated in {u.over_cycles} cycle(s) ({u.over_cycles * self.period:.3f} s, "
-                    f"first at t = {u.first_over_cycle * self.period:.3f} s): {asked}; max following error "
-                    f"{u.max_following_error:.4g} {unit}"
-                )
-            travel = None if name in limited else _travel_warning(name, u)
-            if travel is not None:
-                out.append(travel)
-        return out
+        """What a commissioning engineer must see after a run (report/summary.py)."""
+        from .report.summary import run_warnings
+
+        return run_warnings(self)
 
     def summary(self, result: RunResult) -> dict[str, Any]:
-        axes = {}
-        for name, u in self.units.items():
-            ax = u.axis
-            axes[name] = {
-                "state": ax.state.name,
-                "command_position": ax.command_position,
-                "actual_position": ax.actual_position,
-                "position": ax.position,
-                "following_error": ax.following_error,
-                "max_following_error": u.max_following_error,
-                "max_speed": u.max_speed,
-                "unit": u.config.unit,
-                "resolution": 1.0 / u.config.counts_per_unit,  # one count: what a position means
-                "error_id": ax.error_id,
-                "error_text": ax.error_text,
-            }
-        return {
-            "machine": self.config.machine.name,
-            "file": self.source,
-            "seed": self.seed,
-            "cycle_us": self.clock.period_us,
-            "cycles": result.cycles,
-            "simulated_s": result.simulated_s,
-            "wall_s": result.wall_s,
-            "realtime_factor": (result.simulated_s / result.wall_s) if result.wall_s > 0 else math.inf,
-            "completed": result.completed,
-            "faults": result.faults,
-            "job": {
-                "steps": len(self.config.job.steps),
-                "finished": self.job.finished,
-                "failed": self.job.failed,
-                "rounds": self.job.round,
-                "events": [{"t": e.t, "step": e.step + 1, "text": e.text} for e in self.job.events],
-            },
-            "axes": axes,
-            "warnings": self.warnings(),
-            "trace": {"samples": len(self.trace), "channels": list(self.trace.channels)} if self.trace else None,
-            "device": self.device.summary() if self.device is not None else None,
-        }
+        """The run summary (JSON, the console table, report.md): report/summary.py."""
+        from .report.summary import run_summary
 
-
-def _travel_warning(name: str, u: AxisUnit) -> str | None:
-    """A linear axis without a stroke limit (no software limits, no limit switch): its travel."""
-    c = u.config
-    if c.kind != "linear" or c.sw_limits_enabled or any(sw.kind == "limit" for sw in c.switches):
-        return None
-    if not u.travel_high >= u.travel_low:
-        return None
-    return (f"axis {name!r} travelled {u.travel_low:.6g} .. {u.travel_high:.6g} {c.unit} with no stroke limit "
-            f"(sw_limits_enabled = false, no limit switch): check that the mechanics allow it")
+        return run_summary(self, result)
 
 
 def _getter(obj: Any, name: str) -> Callable[[], Any]:
