@@ -119,8 +119,10 @@ class WheelMaster:
         self._ring: deque[int] | None = deque(maxlen=2**averaging + 1) if averaging else None  # decision 12
         self._cycle_s = cycle_s
         scale = encoder.scale
+        self.source_scale = scale  # the encoder's own object: unchanged while it is the same
         self._sign = -1 if scale < 0 else 1
         self.scale = abs(scale)  # IU per count (Fraction)
+        self._num, self._den = self.scale.numerator, self.scale.denominator
         self.counts_per_unit = float(1 / self.scale) if self.scale else 1.0
         self._origin = int(encoder.master.counts)  # (the encoder's own origin is its power on)
         self._base = int(encoder.counts) * self._sign
@@ -140,7 +142,9 @@ class WheelMaster:
 
     @property
     def position(self) -> float:
-        return float(self.counts * self.scale)
+        # counts x num / den as an int true division: correctly rounded, the same float as
+        # float(counts x scale) without a Fraction per cycle
+        return self.counts * self._num / self._den
 
     @property
     def exact_position(self) -> Fraction:
@@ -221,8 +225,13 @@ class FlyingCutoff(CutoffInputs):
         self.target: Fraction | None = None  # ... of the cut point of the running length
         self.length: Fraction | None = None  # the running length (with the tool width)
         self.programmed: Fraction | None = None  # ... as programmed (the report's target)
-        self.material_length = Fraction(0)
-        self.product_length = Fraction(0)
+        # the length counters: exact IU so far plus whole counts not yet scaled (folded in when
+        # the encoder's scale changes or a counter is read: one int sum per cycle, not a Fraction)
+        self._material = Fraction(0)
+        self._product = Fraction(0)
+        self._material_counts = 0
+        self._product_counts = 0
+        self._count_scale: Any = Fraction(0)
         self._counts: int | None = None
         self.max_lag = 0.0  # |lag| over the synchronous phase (IU), for the cut report
         self.cuts: list[dict[str, Any]] = []  # per EOS: the planned cut (personality measures it)
@@ -257,7 +266,10 @@ class FlyingCutoff(CutoffInputs):
         me = self.rt.master_encoder
         if me is None or not me.scale:
             return None
-        if self.master is None or self.master.encoder is not me or abs(me.scale) != self.master.scale:
+        master = self.master
+        if master is not None and master.encoder is me and me.scale is master.source_scale:
+            return master  # (the scale object stays while C000-C002 and FAK 5 do)
+        if master is None or master.encoder is not me or abs(me.scale) != master.scale:
             old = self.master
             self.master = WheelMaster(me, self._averaging, self.rt.nc_cycle_s)
             if old is not None and old.encoder is me:
@@ -283,10 +295,14 @@ class FlyingCutoff(CutoffInputs):
         if me is not None:
             counts = int(me.counts)
             if self._counts is not None and counts != self._counts and mode in ("manual", "automatic"):
-                delta = (counts - self._counts) * me.scale
-                self.material_length += delta
+                scale = me.scale
+                if scale is not self._count_scale:  # (the same object while C000-C002, FAK 5 stay)
+                    self._fold()
+                    self._count_scale = scale
+                delta = counts - self._counts
+                self._material_counts += delta
                 if mode == "automatic" and not self.inhibited:
-                    self.product_length += delta
+                    self._product_counts += delta
             self._counts = counts
         if self.state == RETURNING and self.axis.motion_done:
             self.state = HOME
@@ -352,6 +368,34 @@ class FlyingCutoff(CutoffInputs):
         if self.state == APPROACH:  # replan from the moving carriage (L2107)
             self.state = HOME
             self._approach(replan=True)
+
+    # -- the length counters (Status 54) ----------------------------------------------------
+
+    def _fold(self) -> None:
+        scale = self._count_scale
+        self._material += self._material_counts * scale
+        self._product += self._product_counts * scale
+        self._material_counts = self._product_counts = 0
+
+    @property
+    def material_length(self) -> Fraction:
+        """All master-encoder-1 movement in Manual and Automatic (IU, exact)."""
+        return self._material + self._material_counts * self._count_scale
+
+    @material_length.setter
+    def material_length(self, value: Fraction) -> None:
+        self._fold()
+        self._material = Fraction(value)
+
+    @property
+    def product_length(self) -> Fraction:
+        """Movement in Automatic, not while Cut Inhibit is active (IU, exact)."""
+        return self._product + self._product_counts * self._count_scale
+
+    @product_length.setter
+    def product_length(self, value: Fraction) -> None:
+        self._fold()
+        self._product = Fraction(value)
 
     # -- mode changes -------------------------------------------------------------------------
 
