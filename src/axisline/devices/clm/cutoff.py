@@ -97,6 +97,7 @@ from .cutoff_inputs import CutoffInputs
 from .cutoff_raster import RasterWatch
 from .cutoff_reverse import ReverseOptimisation
 from .errors import ClmError, axis_fault
+from .material_length import LengthCounters
 
 if TYPE_CHECKING:
     from .nc import NcTask
@@ -225,13 +226,7 @@ class FlyingCutoff(CutoffInputs):
         self.target: Fraction | None = None  # ... of the cut point of the running length
         self.length: Fraction | None = None  # the running length (with the tool width)
         self.programmed: Fraction | None = None  # ... as programmed (the report's target)
-        # the length counters: exact IU so far plus whole counts not yet scaled (folded in when
-        # the encoder's scale changes or a counter is read: one int sum per cycle, not a Fraction)
-        self._material = Fraction(0)
-        self._product = Fraction(0)
-        self._material_counts = 0
-        self._product_counts = 0
-        self._count_scale: Any = Fraction(0)
+        self.counters = LengthCounters()  # material and product length (material_length.py)
         self._counts: int | None = None
         self.max_lag = 0.0  # |lag| over the synchronous phase (IU), for the cut report
         self.cuts: list[dict[str, Any]] = []  # per EOS: the planned cut (personality measures it)
@@ -295,14 +290,7 @@ class FlyingCutoff(CutoffInputs):
         if me is not None:
             counts = int(me.counts)
             if self._counts is not None and counts != self._counts and mode in ("manual", "automatic"):
-                scale = me.scale
-                if scale is not self._count_scale:  # (the same object while C000-C002, FAK 5 stay)
-                    self._fold()
-                    self._count_scale = scale
-                delta = counts - self._counts
-                self._material_counts += delta
-                if mode == "automatic" and not self.inhibited:
-                    self._product_counts += delta
+                self.counters.add(counts - self._counts, me.scale, product=mode == "automatic" and not self.inhibited)
             self._counts = counts
         if self.state == RETURNING and self.axis.motion_done:
             self.state = HOME
@@ -369,39 +357,21 @@ class FlyingCutoff(CutoffInputs):
             self.state = HOME
             self._approach(replan=True)
 
-    # -- the length counters (Status 54) ----------------------------------------------------
-
-    def _fold(self) -> None:
-        scale = self._count_scale
-        self._material += self._material_counts * scale
-        self._product += self._product_counts * scale
-        self._material_counts = self._product_counts = 0
+    # -- the length counters (Status 54; material_length.LengthCounters) ----------------------
 
     @property
     def material_length(self) -> Fraction:
-        """All master-encoder-1 movement in Manual and Automatic (IU, exact)."""
-        return self._material + self._material_counts * self._count_scale
-
-    @material_length.setter
-    def material_length(self, value: Fraction) -> None:
-        self._fold()
-        self._material = Fraction(value)
+        return self.counters.material
 
     @property
     def product_length(self) -> Fraction:
-        """Movement in Automatic, not while Cut Inhibit is active (IU, exact)."""
-        return self._product + self._product_counts * self._count_scale
-
-    @product_length.setter
-    def product_length(self, value: Fraction) -> None:
-        self._fold()
-        self._product = Fraction(value)
+        return self.counters.product
 
     # -- mode changes -------------------------------------------------------------------------
 
     def carry(self, old: FlyingCutoff) -> None:
         """After Parameter mode: the counters and the length instruction go on."""
-        self.material_length, self.product_length = old.material_length, old.product_length
+        self.counters = old.counters
         self.length_instruction, self.cuts = old.length_instruction, old.cuts
 
     def enter_automatic(self) -> None:
@@ -594,17 +564,8 @@ class FlyingCutoff(CutoffInputs):
 
     def status_54(self) -> str:
         """``54 vmmmmmmmm vpppppppp`` (decision 8)."""
-
-        def field(x: Fraction) -> str:
-            n = int(x)  # toward zero: whole IU
-            n = max(-99_999_999, min(99_999_999, n))
-            return f"{'-' if x < 0 else '+'}{abs(n):08d}"
-
-        return f"54 {field(self.material_length)} {field(self.product_length)} "
+        return self.counters.status_54()
 
     def clear_counter(self, which: int) -> None:
         """!sCLL1 (material) / !sCLL2 (product)."""
-        if which == 1:
-            self.material_length = Fraction(0)
-        else:
-            self.product_length = Fraction(0)
+        self.counters.clear(which)

@@ -28,7 +28,63 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["MaterialOutputs", "op_mlo", "op_mlt"]
+__all__ = ["LengthCounters", "MaterialOutputs", "op_mlo", "op_mlt"]
+
+
+class LengthCounters:
+    """The flying cutoff's material and product length counters (cutoff.py decision 8, Status
+    54, !sCLL1 / !sCLL2), exact IU: what is summed so far plus whole counts not yet scaled,
+    folded in when the encoder's scale changes (one int sum per NC cycle, not a Fraction)."""
+
+    def __init__(self) -> None:
+        self._material = Fraction(0)
+        self._product = Fraction(0)
+        self._material_counts = 0
+        self._product_counts = 0
+        self._scale: Any = Fraction(0)
+
+    def add(self, counts: int, scale: Any, *, product: bool) -> None:
+        """`counts` of master encoder 1 at `scale` IU per count; the product counter too when
+        `product` (Automatic, no Cut Inhibit)."""
+        if scale is not self._scale:  # (the same object while C000-C002 and FAK 5 stay)
+            self._fold()
+            self._scale = scale
+        self._material_counts += counts
+        if product:
+            self._product_counts += counts
+
+    def _fold(self) -> None:
+        scale = self._scale
+        self._material += self._material_counts * scale
+        self._product += self._product_counts * scale
+        self._material_counts = self._product_counts = 0
+
+    @property
+    def material(self) -> Fraction:
+        """All master-encoder-1 movement in Manual and Automatic (IU)."""
+        return self._material + self._material_counts * self._scale
+
+    @property
+    def product(self) -> Fraction:
+        """Movement in Automatic, not while Cut Inhibit is active (IU)."""
+        return self._product + self._product_counts * self._scale
+
+    def clear(self, which: int) -> None:
+        """!sCLL1 (1: material) / !sCLL2 (2: product)."""
+        self._fold()
+        if which == 1:
+            self._material = Fraction(0)
+        else:
+            self._product = Fraction(0)
+
+    def status_54(self) -> str:
+        """``54 vmmmmmmmm vpppppppp``: whole IU toward zero, sign and 8 digits."""
+
+        def field(x: Fraction) -> str:
+            n = max(-99_999_999, min(99_999_999, int(x)))
+            return f"{'-' if x < 0 else '+'}{abs(n):08d}"
+
+        return f"54 {field(self.material)} {field(self.product)} "
 
 
 class MaterialOutputs:
