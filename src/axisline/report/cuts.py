@@ -25,7 +25,7 @@ import math
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-__all__ = ["job_json", "line_speed_unit", "cut_table_markdown", "length_error_figure", "error_histogram_figure"]
+__all__ = ["job_json", "line_speed_unit", "cut_table_markdown", "length_error_figure", "error_histogram_figure", "finish_cut_axes"]
 
 # a line's speed is read in m/min on the machine (FS701 register 0x0B08 is LU/min, the CLM's
 # V011 and line speed parameters are per minute): the length units that convert to metres
@@ -172,3 +172,15 @@ def error_histogram_figure(plt: Any, cuts: list[Mapping[str, Any]], path: Path, 
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return path
+
+
+def finish_cut_axes(ax: Any) -> None:
+    """The dress every per-cut figure shares: the zero line, whole cut numbers, grid, legend."""
+    from matplotlib.ticker import MaxNLocator
+
+    ax.axhline(0.0, color="black", linewidth=0.5)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("cut")
+    ax.grid(True, alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper right", fontsize=8)

@@ -118,21 +118,14 @@ def write_plots(d: dict[str, Any], out_dir: str | Path) -> list[Path]:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import MaxNLocator
-
-    from axisline.report.cuts import error_histogram_figure, length_error_figure
+    from axisline.report.cuts import error_histogram_figure, finish_cut_axes, length_error_figure
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
     fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     length_error_figure(plt, ax, cuts)
-    ax.axhline(0.0, color="black", linewidth=0.5)
-    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.set_xlabel("cut")
-    ax.grid(True, alpha=0.3)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper right", fontsize=8)
+    finish_cut_axes(ax)
     ax.set_title("CLM flying cutoff: length error of every piece")
     path = out / "clm_length_error.png"
     fig.savefig(path, dpi=90)

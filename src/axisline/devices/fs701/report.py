@@ -31,7 +31,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from axisline.report.cuts import cut_table_markdown as shared_cut_table
-from axisline.report.cuts import error_histogram_figure, length_error_figure, line_speed_unit
+from axisline.report.cuts import error_histogram_figure, finish_cut_axes, length_error_figure, line_speed_unit
 
 __all__ = ["report_section", "write_plots", "cut_table_markdown"]
 
@@ -125,7 +125,6 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import MaxNLocator
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -150,12 +149,7 @@ def write_plots(d: Mapping[str, Any], data: Mapping[str, np.ndarray] | None, out
         length_error_figure(plt, ax, pieces, width=0.4 if marks else 0.8, shift=0.2 if marks else 0.0, tolerances=tolerances)
         if marks:
             ax.set_ylabel("offset [carriage increments]")
-    ax.axhline(0.0, color="black", linewidth=0.5)
-    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.set_xlabel("cut")
-    ax.grid(True, alpha=0.3)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper right", fontsize=8)
+    finish_cut_axes(ax)
     kc = d["counts_per_lu"]["carriage"]
     sec = ax.secondary_yaxis("right", functions=(lambda y: y / kc, lambda y: y * kc))
     sec.set_ylabel(f"[{lu}]")
