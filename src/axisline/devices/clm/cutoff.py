@@ -2,7 +2,7 @@
 L1905-1911, Status 54 L7250-7266, !sCL0 / !sCLL1 / !sCLL2 L7370-7394; spec §4.12).
 
     rt.cutoff                         # FlyingCutoff when axis 1 is in Ax00 mode 5, else None
-    rt.cutoff.lml(task, ins, length)  # LML 1 LLLLLL.LLL: waits until synchronous (execute.op_lml)
+    rt.cutoff.lml(task, ins, length)  # LML 1 LLLLLL.LLL: waits until synchronous (cutoff_raster.op_lml)
     rt.cutoff.eos(task)               # EOS: the carriage leaves the material and returns home
     rt.cutoff.material_length, .product_length   # Status 54 (IU)
 

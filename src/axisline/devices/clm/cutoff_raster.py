@@ -38,6 +38,7 @@ Decisions (spec line -> choice, why)
 from __future__ import annotations
 
 from fractions import Fraction
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from .errors import ClmError
@@ -46,7 +47,7 @@ from .operands import Operand
 if TYPE_CHECKING:
     from .nc import NcTask
 
-__all__ = ["RasterWatch", "op_lmk", "op_lmr", "RASTER_1"]
+__all__ = ["RasterWatch", "op_lml", "op_lmk", "op_lmr", "RASTER_1"]
 
 RASTER_1 = Operand("I", 0, 1, 7)
 
@@ -84,23 +85,28 @@ def _length(rt: Any, ins: Any, index: int) -> Fraction:
     return Fraction(rt.number(ins, index), 1000)
 
 
-def op_lmk(rt: Any, task: NcTask, ins: Any) -> int | None:
-    """LMK 1 length offset (decision 2)."""
+def _part_length(rt: Any, task: NcTask, ins: Any, line: str, raster: Callable[[], Any], *, wait_for_raster: bool = False) -> int | None:
+    """LML / LMK / LMR: the cutoff's length instruction; `raster()` gives its raster mode, taken
+    when the instruction is reached (not on the cycles it waits)."""
     cutoff = rt.cutoff
     if cutoff is None:
-        raise ClmError("0A", "LMK needs axis 1 in flying cutoff (A100 mode 5, L2115)")
+        raise ClmError("0A", f"{ins.mnemonic} needs axis 1 in flying cutoff (A100 mode 5{line})")
     rt.axis(ins, 0)
     if task.wait is None:
-        cutoff.raster_mode = ("LMK", _length(rt, ins, 2), None)
-    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1)) else None
+        cutoff.raster_mode = raster()  # (None: LML, no raster)
+    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1), wait_for_raster=wait_for_raster) else None
+
+
+def op_lml(rt: Any, task: NcTask, ins: Any) -> int | None:
+    """LML 1 LLLLLL.LLL: waits until the carriage is synchronous with the cut point (L2119-2131)."""
+    return _part_length(rt, task, ins, ", L2129", lambda: None)
+
+
+def op_lmk(rt: Any, task: NcTask, ins: Any) -> int | None:
+    """LMK 1 length offset (decision 2)."""
+    return _part_length(rt, task, ins, ", L2115", lambda: ("LMK", _length(rt, ins, 2), None))
 
 
 def op_lmr(rt: Any, task: NcTask, ins: Any) -> int | None:
     """LMR 1 raster offset (decision 3)."""
-    cutoff = rt.cutoff
-    if cutoff is None:
-        raise ClmError("0A", "LMR needs axis 1 in flying cutoff (A100 mode 5)")
-    rt.axis(ins, 0)
-    if task.wait is None:
-        cutoff.raster_mode = ("LMR", _length(rt, ins, 2), _length(rt, ins, 1))
-    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1), wait_for_raster=True) else None
+    return _part_length(rt, task, ins, "", lambda: ("LMR", _length(rt, ins, 2), _length(rt, ins, 1)), wait_for_raster=True)

@@ -41,7 +41,7 @@ from .errors import ClmError
 from .fields import VARIABLE_MAX, VARIABLE_SCALE, Var
 from .operands import Operand
 from .program import Instruction
-from .cutoff_raster import op_lmk, op_lmr
+from .cutoff_raster import op_lmk, op_lml, op_lmr
 from .material_length import op_mlo, op_mlt
 from .measuring_wheel import op_fun
 from .registration import op_rep, op_rmi, op_srm, op_srp
@@ -517,17 +517,6 @@ def op_rmi_noted(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
 
 
 # -- flying cutoff (state and decisions in cutoff.py) ---------------------------------------------
-
-
-def op_lml(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
-    """LML 1 LLLLLL.LLL: waits until the carriage is synchronous with the cut point (L2119-2131)."""
-    cutoff = rt.cutoff
-    if cutoff is None:
-        raise ClmError("0A", "LML needs axis 1 in flying cutoff (A100 mode 5, L2129)")
-    rt.axis(ins, 0)
-    if task.wait is None:
-        cutoff.raster_mode = None  # (LMK / LMR set theirs: cutoff_raster.py)
-    return _next(task) if cutoff.lml(task, ins.number, Fraction(rt.number(ins, 1), 1000)) else None
 
 
 def op_eos(rt: ClmRuntime, task: NcTask, ins: Instruction) -> int | None:
