@@ -25,7 +25,7 @@ import math
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-__all__ = ["job_json", "line_speed_unit", "cut_table_markdown", "length_error_figure", "error_histogram_figure", "finish_cut_axes"]
+__all__ = ["job_json", "line_speed_unit", "cut_table_markdown", "length_error_figure", "error_histogram_figure", "finish_cut_axes", "cell"]
 
 # a line's speed is read in m/min on the machine (FS701 register 0x0B08 is LU/min, the CLM's
 # V011 and line speed parameters are per minute): the length units that convert to metres
@@ -84,7 +84,8 @@ def job_json(device: Mapping[str, Any]) -> dict[str, Any]:
     return {"cuts": cuts, "summary": summary}
 
 
-def _f(x: Any, fmt: str = ".3f", none: str = "-") -> str:
+def cell(x: Any, fmt: str = ".3f", none: str = "-") -> str:
+    """A report cell: `none` for a missing (or NaN) value, yes/no for a flag, `fmt` for a float."""
     if x is None or (isinstance(x, float) and math.isnan(x)):
         return none
     if isinstance(x, bool):
@@ -113,15 +114,15 @@ def cut_table_markdown(cuts: Iterable[Mapping[str, Any]], length_unit: str, meas
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for c in cuts:
         row = [
-            str(c["index"]), _f(c["time"], ".3f"), str(c["kind"]), _f(c["target_length"], ".2f"), _f(c["actual_length"], ".3f"),
-            _f(c["error_lu"], "+.4f"), _f(c["error_counts"], "+.2f"), _f(_scaled(c.get("line_speed"), k), speed_fmt),
-            _f(_scaled(c.get("line_speed_measured"), k), speed_fmt), _f(c.get("following_error"), "+.2f"), _f(c.get("constant_speed")),
+            str(c["index"]), cell(c["time"], ".3f"), str(c["kind"]), cell(c["target_length"], ".2f"), cell(c["actual_length"], ".3f"),
+            cell(c["error_lu"], "+.4f"), cell(c["error_counts"], "+.2f"), cell(_scaled(c.get("line_speed"), k), speed_fmt),
+            cell(_scaled(c.get("line_speed_measured"), k), speed_fmt), cell(c.get("following_error"), "+.2f"), cell(c.get("constant_speed")),
         ]
         if marks:
-            row += [_f(c.get("mark_offset"), "+.4f"), _f(c.get("mark_offset_counts"), "+.2f")]
+            row += [cell(c.get("mark_offset"), "+.4f"), cell(c.get("mark_offset_counts"), "+.2f")]
         if tolerance:
             ok = c.get("in_tolerance")
-            row += [_f(c.get("tolerance"), "g"), "-" if ok is None else ("yes" if ok else "**NO**")]
+            row += [cell(c.get("tolerance"), "g"), "-" if ok is None else ("yes" if ok else "**NO**")]
         lines.append("| " + " | ".join(row) + " |")
     return "\n".join(lines) + "\n"
 

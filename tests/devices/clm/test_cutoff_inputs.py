@@ -305,21 +305,30 @@ def test_lmk_corrects_the_length_on_a_raster(tmp_path):
         assert abs(got - want) * COUNTS <= 2.0, (points)
 
 
-def test_no_material_runs_on_the_variable(tmp_path):
-    """cutoff.py decision 10 (C008, L5563-5582): the strip stands; with the No Material input
-    (I1.00.7) on and V610 = 500 IU/s the CLM cuts every 1000 mm of the speed the variable gives
-    (one cut about every 2 s), the carriage synchronous with that speed."""
-    m = machine(tmp_path, PROGRAM, {"C008": "I1.00.7 610"}, profile='[\n  { time = 0.0, speed = 0.0, acceleration = 500.0 },\n]')
-    m.device.memory.variables.write(610, 500_000_000, by="serial")
-    m.device.memory.image.set(parse_operand("I1.00.7", bit=True), 1)
-    speeds = []
+STANDING = '[\n  { time = 0.0, speed = 0.0, acceleration = 500.0 },\n]'  # the strip stands
+
+
+def synchronous_speeds(m: Machine, cuts: int) -> list[float]:
+    """Run `cuts` cuts; the carriage's set-point speed in every cycle it was synchronous."""
+    speeds: list[float] = []
 
     def watch(m: Machine) -> None:
         c = m.device.rt.cutoff
         if c is not None and c.state == SYNC:
             speeds.append(c.axis.axis.command_velocity)
 
-    run_cuts(m, 3, limit_s=8.0, each=watch)
+    run_cuts(m, cuts, limit_s=8.0, each=watch)
+    return speeds
+
+
+def test_no_material_runs_on_the_variable(tmp_path):
+    """cutoff.py decision 10 (C008, L5563-5582): the strip stands; with the No Material input
+    (I1.00.7) on and V610 = 500 IU/s the CLM cuts every 1000 mm of the speed the variable gives
+    (one cut about every 2 s), the carriage synchronous with that speed."""
+    m = machine(tmp_path, PROGRAM, {"C008": "I1.00.7 610"}, profile=STANDING)
+    m.device.memory.variables.write(610, 500_000_000, by="serial")
+    m.device.memory.image.set(parse_operand("I1.00.7", bit=True), 1)
+    speeds = synchronous_speeds(m, 3)
     c = m.device.rt.cutoff
     assert m.material.position == 0.0
     assert [float(x["target"]) for x in c.cuts[:2]] == pytest.approx([1000.0, 2000.0], abs=0.05)  # (the 3rd: punched, EOS to come)
@@ -410,18 +419,11 @@ def test_test_mode_cuts_on_the_internal_clock(tmp_path):
     """cutoff.py decision 11 (L3968-3972): A100's test digit: the strip stands, the internal clock
     at 8 of 32 steps of A106 (500 mm/s, test_speed_steps = 8) is the material; the carriage cuts
     every 1000 mm of it, synchronous at 500 mm/s; "down" and "zero" are the keys."""
-    m = machine(tmp_path, PROGRAM, {"A100": "0 0 1 5 1"}, profile='[\n  { time = 0.0, speed = 0.0, acceleration = 500.0 },\n]')
+    m = machine(tmp_path, PROGRAM, {"A100": "0 0 1 5 1"}, profile=STANDING)
     path = tmp_path / "m.toml"
     path.write_text(path.read_text().replace('report_output = "Q1.00.0"', 'report_output = "Q1.00.0"\ntest_speed_steps = 8'))
     m = Machine.from_file(path)
-    speeds = []
-
-    def watch(m: Machine) -> None:
-        c = m.device.rt.cutoff
-        if c is not None and c.state == SYNC:
-            speeds.append(c.axis.axis.command_velocity)
-
-    run_cuts(m, 3, limit_s=8.0, each=watch)
+    speeds = synchronous_speeds(m, 3)
     c = m.device.rt.cutoff
     assert m.material.position == 0.0 and c.test_steps == 8
     assert [float(x["target"]) for x in c.cuts[:2]] == [1000.0, 2000.0]

@@ -31,19 +31,10 @@ from typing import Any, Mapping
 import numpy as np
 
 from axisline.report.cuts import cut_table_markdown as shared_cut_table
+from axisline.report.cuts import cell as _f
 from axisline.report.cuts import error_histogram_figure, finish_cut_axes, length_error_figure, line_speed_unit
 
 __all__ = ["report_section", "write_plots", "cut_table_markdown"]
-
-
-def _f(x: Any, fmt: str = ".3f", none: str = "-") -> str:
-    if x is None:
-        return none
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, float):
-        return format(x, fmt)
-    return str(x)
 
 
 def cut_table_markdown(d: Mapping[str, Any]) -> str:
