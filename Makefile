@@ -44,7 +44,19 @@ setup: $(STAMP)
 demo: $(STAMP)
 	$(BIN)/axisline run examples/flying_shear.toml --report out/demo
 
-test: $(STAMP)
+# Debian's Chromium for the web HMI's browser tests (tests/hmi, driven by Playwright with this
+# executable; Playwright's own browser download needs the internet). Installed once when missing;
+# where it cannot be installed (not root, no sudo) those tests are skipped with that reason.
+BROWSER := /usr/bin/chromium
+APT_CHROMIUM = DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1 || \
+	{ apt-get update -q >/dev/null 2>&1 && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1; }
+$(BROWSER):
+	@echo "axisline: installing Debian's chromium for the HMI browser tests (about 20 s) ..."
+	@if [ "$$(id -u)" = 0 ]; then ( $(APT_CHROMIUM) ) || echo "axisline: chromium could not be installed: the browser tests will be skipped"; \
+	elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then sudo sh -c '$(APT_CHROMIUM)' || echo "axisline: chromium could not be installed: the browser tests will be skipped"; \
+	else echo "axisline: not root and no sudo: chromium not installed, the browser tests will be skipped"; fi
+
+test: $(STAMP) $(BROWSER)
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)
