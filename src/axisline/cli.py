@@ -150,40 +150,9 @@ def run(
         with Progress(TextColumn("[bold]simulating"), BarColumn(), TextColumn("{task.percentage:>5.1f} %"), TimeElapsedColumn(), console=console, transient=True) as bar:
             task = bar.add_task("run", total=1.0)
             result = m.run(duration, progress=lambda f: bar.update(task, completed=f))
-    summary = m.summary(result)
-    if m.device is not None:  # e.g. the FS701's "cuts" and "summary" in the issue's names
-        summary.update(m.device.json_fields(summary.get("device") or {}))
-    if report_dir is not None:
-        json_out = json_out or report_dir / "summary.json"
-        trace_out = trace_out or report_dir / "trace.npz"
-        plot_dir = plot_dir or report_dir
-    if trace_out is not None and m.trace is not None:
-        trace_out.parent.mkdir(parents=True, exist_ok=True)
-        m.trace.save_npz(trace_out)
-        m.trace.save_csv(trace_out.with_suffix(".csv"))
-        summary["trace"]["file"] = str(trace_out)
-    device_plots: list[Path] = []
-    if plot_dir is not None and m.trace is not None:
-        from .report.plots import plot_trace
+    from .report.outputs import write_outputs
 
-        files = plot_trace(m.trace.data(), m.trace.units, plot_dir, title=m.config.machine.name)
-        summary["plots"] = [str(f) for f in files]
-    if plot_dir is not None and m.device is not None:  # a personality's own figures
-        device_plots = m.device.plots(plot_dir, m.trace.data() if m.trace is not None else None)
-        summary["plots"] = [str(f) for f in device_plots] + summary.get("plots", [])
-    if report_dir is not None:
-        from .report.markdown import write_report
-
-        generic = [Path(p) for p in summary.get("plots", []) if Path(p) not in device_plots]
-        path = write_report(summary, report_dir, generic)
-        if m.device is not None and summary.get("device"):
-            _insert_device_section(path, m.device.report_markdown(summary["device"], device_plots))
-        summary["report"] = str(path)
-    if json_out is not None:
-        from .kernel import atomic_write_text
-
-        json_out.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(json_out, json.dumps(summary, indent=2) + "\n")
+    summary = write_outputs(m, result, json_out=json_out, trace_out=trace_out, plot_dir=plot_dir, report_dir=report_dir)
     from .report.console import print_summary
 
     print_summary(summary, len(m.config.job.steps), m.config.machine.personality if m.device is not None else None,
@@ -192,16 +161,6 @@ def run(
         sys.stdout.write(json.dumps(summary, indent=2) + "\n")
         sys.stdout.flush()
     raise typer.Exit(0 if result.completed else 1)
-
-
-def _insert_device_section(path: Path, section: str) -> None:
-    """Put a personality's report section (Markdown) before the generic plots of report.md."""
-    from .kernel import atomic_write_text
-
-    text = path.read_text(encoding="utf-8")
-    at = text.find("\n## Plots\n")
-    text = text + "\n" + section if at < 0 else text[: at + 1] + section + "\n" + text[at + 1 :]
-    atomic_write_text(path, text)
 
 
 @app.command()
@@ -481,78 +440,64 @@ def serve(
     modbus: Optional[str] = typer.Option(None, "--modbus", help="Modbus TCP endpoint HOST:PORT"),
     serial_tcp: Optional[str] = typer.Option(None, "--serial-tcp", help="serial protocol over TCP HOST:PORT"),
     serial_pty: bool = typer.Option(False, "--serial-pty", help="serial protocol on a pseudo-terminal (path printed)"),
-    http: Optional[str] = typer.Option(None, "--http", help="web HMI HOST:PORT"),
+    http: Optional[str] = typer.Option(None, "--http", help="web HMI HOST:PORT (overview, scope, I/O, device, events)"),
     allow_writes: bool = typer.Option(False, "--allow-writes", help="accept writes from the network (the operator's explicit enable)"),
+    token: Optional[str] = typer.Option(None, "--token", envvar="AXISLINE_HMI_TOKEN", help="the token HMI writes must send (default: a new one, printed at start)"),
+    log: Optional[Path] = typer.Option(None, "--log", help="append the event log to this file as JSON lines"),
+    trace_out: Optional[Path] = typer.Option(None, "--trace", help="write the scope ring when stopped (.npz; .csv beside it)"),
+    report_dir: Optional[Path] = typer.Option(None, "--report", help="write the usual report (report.md, summary.json, trace, plots) when stopped"),
     duration: Optional[float] = typer.Option(None, "--duration", help="stop by itself after this many seconds"),
 ) -> None:
     """Run the machine on the wall clock (soft real time) with its protocol endpoints.
 
-    Endpoints bind to 127.0.0.1 unless a host is given. Writes from the network are refused
-    unless --allow-writes is given. Ctrl-C or SIGTERM stops the axes with their stop ramps,
-    saves what must persist and exits 0; another Ctrl-C or SIGTERM meanwhile does not cut
-    the ramps short (kill -9 is the hard stop).
+    The cycle runs in a process of its own; the endpoints, the web HMI and the event log run
+    in a second one, so clients cannot stall the cycle. Endpoints bind to 127.0.0.1 unless a
+    host is given. Writes from the network are refused unless --allow-writes is given (the
+    HMI's writes also need the token). Ctrl-C or SIGTERM stops the axes with their stop
+    ramps, saves what must persist and exits 0; another Ctrl-C or SIGTERM meanwhile does not
+    cut the ramps short (kill -9 is the hard stop).
     """
     from .config import load_machine_file
     from .kernel import WallClock
     from .machine import Machine
+    from .serve.run import ServeError, ServeOptions, offered_endpoints, serve_machine
 
     duration = _machine_value(duration, "--duration", "duration")
+    if token is not None and not (8 <= len(token) <= 200 and token.isprintable() and " " not in token):
+        console.print(f"--token: {len(token)} characters; allowed is 8..200 printable characters without spaces", markup=False)
+        raise typer.Exit(2)
+    _writable({"--log": log, "--trace": trace_out, "--report": report_dir and report_dir / "report.md"})
     try:
         cfg = load_machine_file(machine)
-        m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us), source=str(machine))
+        cfg.trace.mode = "ring"  # serving has no end: the scope keeps the newest samples
+        m = Machine(cfg, clock=WallClock(cfg.machine.cycle_us, busy_wait_us=cfg.realtime.busy_wait_us), source=str(machine))
     except ConfigError as e:
         raise _bad_file(e) from None
     wanted = {"modbus": _endpoint(modbus, "--modbus"), "serial-tcp": _endpoint(serial_tcp, "--serial-tcp"), "http": _endpoint(http, "--http")}
+    offered = offered_endpoints(m)
     if serial_pty:
-        wanted["serial-tcp" if "serial-tcp" not in wanted else "serial-pty"] = ("pty", 0)
-    offered = set(m.device.endpoints) if m.device is not None else set()
+        wanted["serial-pty"] = ("pty", 0)  # checked like serial-tcp, then served by the spec's flag
     for kind, ep in wanted.items():
         base_kind = "serial-tcp" if kind == "serial-pty" else kind
         if ep is not None and base_kind not in offered:
             console.print(f"[red]--{kind}[/red]: this machine (personality {escape(repr(cfg.machine.personality))}) offers no such endpoint")
             raise typer.Exit(2)
+    wanted.pop("serial-pty", None)
     if m.device is not None:
         m.device.network_writes = allow_writes
         _remove_stale_temporaries(m.device.store_paths())
-    servers = _start_servers(m, wanted, serial_pty)
+    opts = ServeOptions(wanted=wanted, serial_pty=serial_pty, allow_writes=allow_writes, token=token, duration=duration,
+                        log_path=log, trace_out=trace_out, report_dir=report_dir)
 
-    stopping = False
+    def stdout(line: str) -> None:
+        print(line, flush=True)
 
-    def _stop(signum, frame):  # runs between cycles: the scheduler checks the flag
-        nonlocal stopping
-        if stopping:
-            # scheduler.stop() now would end stop_all()'s ramps at once: axes left moving,
-            # nothing saved. os.write: the handler may interrupt a console print.
-            os.write(2, b"already stopping: the axes finish their stop ramps and what must persist is saved "
-                        b"(kill -9 stops at once, without either)\n")
-            return
-        stopping = True
-        m.scheduler.stop()
-
-    signal.signal(signal.SIGINT, _stop)
-    signal.signal(signal.SIGTERM, _stop)
-    limit = None if duration is None else max(1, round(duration / m.period))
-    console.print(f"serving {escape(str(machine))} on the wall clock, cycle {m.clock.period_us} us; Ctrl-C stops")
-    print("ready", flush=True)
     try:
-        n = m.scheduler.run(limit if limit is not None else 2**62)  # returns on stop()
-    finally:
-        stopping = True  # from here on a signal only says so (see _stop)
-        for srv in servers:
-            srv.stop()
-    if m.scheduler.stop_requested:  # a signal came as --duration ran out: the stop follows anyway
-        m.scheduler.run(1)  # takes the request back without running a cycle
-    rested = m.stop_all()
-    try:
-        saved = m.persist()
-    except OSError as e:  # the check refused unwritable paths; this one failed since
-        console.print(f"[red]cannot save[/red] what must persist: {escape(str(e))}", markup=True)
-        print("stopped", flush=True)
-        raise typer.Exit(1) from None
-    late = getattr(m.clock, "late_max", 0.0)
-    console.print(f"stopped after {n} cycles; axes {'at rest' if rested else 'NOT at rest'}; saved {len(saved)} file(s); worst lateness {late * 1e3:.2f} ms")
-    print("stopped", flush=True)
-    raise typer.Exit(0 if rested else 1)
+        code = serve_machine(m, str(machine), opts, say=lambda text: console.print(text, markup=False, highlight=False, soft_wrap=True), stdout=stdout)
+    except ServeError as e:
+        console.print(f"cannot serve: {e}", markup=False)
+        raise typer.Exit(e.code) from None
+    raise typer.Exit(code)
 
 
 def _remove_stale_temporaries(paths: list[Path]) -> None:
@@ -562,31 +507,6 @@ def _remove_stale_temporaries(paths: list[Path]) -> None:
     for path in paths:
         for tmp in remove_stale_temporaries(path):
             console.print(f"removed {tmp} (a save interrupted before its rename; {path} is whole)", markup=False)
-
-
-def _start_servers(m, wanted: dict, serial_pty: bool) -> list:
-    """Start the protocol servers the command line asked for; print where they listen."""
-    from .fieldbus.serial_tcp import PtyBridge, SerialTcpServer
-
-    servers: list = []
-    ep = wanted.get("serial-tcp")
-    if ep is not None and ep[0] != "pty":
-        srv = SerialTcpServer(m.device.byte_endpoint(), m.commands, ep[0], ep[1]).start()
-        servers.append(srv)
-        print(f"serial-tcp {srv.address[0]}:{srv.address[1]}", flush=True)
-    if serial_pty:
-        bridge = PtyBridge(m.device.byte_endpoint(), m.commands).start()
-        servers.append(bridge)
-        print(f"serial-pty {bridge.path}", flush=True)
-    if wanted.get("modbus") is not None:
-        from .fieldbus.modbus import ModbusServer
-
-        host, port = wanted["modbus"]
-        dev = m.device
-        srv = ModbusServer(dev.register_endpoint(), m.commands, host, port, writes_allowed=lambda: dev.network_writes).start()
-        servers.append(srv)
-        print(f"modbus {srv.address[0]}:{srv.address[1]}", flush=True)
-    return servers
 
 
 def main() -> None:  # pragma: no cover

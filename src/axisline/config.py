@@ -131,6 +131,35 @@ class TraceConfig(_Strict):
         return channels
 
 
+class RealtimeConfig(_Strict):
+    """Soft real-time measures for `axisline serve` (a simulated `run` never waits for the clock)."""
+
+    gc: Literal["python", "idle"] = Field(
+        "python",
+        description="python: the interpreter collects garbage when it likes, inside a cycle too; idle: objects made at start are frozen, "
+        "automatic collection is off, and `serve` collects in the idle time between cycles",
+    )
+    cpus: list[Annotated[int, Field(ge=0, le=4095)]] = Field(
+        default_factory=list, max_length=64,
+        description="CPUs the cycle process may run on (empty: any); the endpoint process then runs on the others",
+    )
+    fifo_priority: int = Field(
+        0, ge=0, le=99,
+        description="SCHED_FIFO priority of the cycle process, 1..99 (0: the normal scheduler); where not permitted, serve says so and runs on",
+    )
+    busy_wait_us: int = Field(
+        0, ge=0, le=10_000,
+        description="spin instead of sleeping for this long before each deadline (the OS wakes sleepers late); at most the period",
+    )
+    overrun_us: int | None = Field(
+        None, ge=1, le=10_000_000,
+        description="a cycle starting later than this after its deadline is an overrun (none: one period)",
+    )
+    on_overrun: Literal["log", "stop"] = Field(
+        "log", description="log: count and log overruns; stop: also stop every axis with its stop ramp",
+    )
+
+
 class MachineConfig(_Strict):
     machine: MachineSection = Field(default_factory=MachineSection)
     axis: list[AxisEntry] = Field(default_factory=list, max_length=64)
@@ -145,9 +174,13 @@ class MachineConfig(_Strict):
     cam: list[CamEntry] = Field(default_factory=list, max_length=64, description="cam curves")
     job: JobConfig = Field(default_factory=JobConfig)
     trace: TraceConfig = Field(default_factory=TraceConfig)
+    realtime: RealtimeConfig = Field(default_factory=RealtimeConfig, description="soft real-time measures of `axisline serve`")
 
     @model_validator(mode="after")
     def _cross_checks(self) -> "MachineConfig":
+        if self.realtime.busy_wait_us > self.machine.cycle_us:
+            raise ValueError(f"realtime.busy_wait_us = {self.realtime.busy_wait_us} is longer than the cycle "
+                             f"(machine.cycle_us = {self.machine.cycle_us}); allowed is 0..{self.machine.cycle_us}")
         names = [a.name for a in self.axis]
         for n in names:
             if names.count(n) > 1:

@@ -25,6 +25,8 @@ from typing import Any, ClassVar, Protocol
 
 from pydantic import BaseModel, ConfigDict
 
+from ..kernel.requests import note_write_gate
+
 # name -> "module:Class", imported on first use so a machine only loads its own device
 PERSONALITIES: dict[str, str] = {}
 
@@ -87,7 +89,18 @@ class Personality(ABC):
         self.config = config
         #: the operator's explicit enable for writes from the network (`serve --allow-writes`);
         #: endpoints refuse writes (with the protocol's own refusal) while it is False
-        self.network_writes = False
+        self._network_writes = False
+
+    @property
+    def network_writes(self) -> bool:
+        """The operator's write enable. Endpoints read it exactly when they decide on a write,
+        so reading it also tells `serve`'s audit that the request is a write (kernel/requests.py)."""
+        note_write_gate()
+        return self._network_writes
+
+    @network_writes.setter
+    def network_writes(self, value: bool) -> None:
+        self._network_writes = bool(value)
 
     @abstractmethod
     def tick(self, cycle: int) -> None:

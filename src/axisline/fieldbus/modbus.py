@@ -55,6 +55,8 @@ from typing import Any
 
 from pymodbus.constants import ExcCodes
 
+from .clients import current_client, peer_name, set_client
+
 _log = logging.getLogger(__name__)
 
 _READ = {3: "holding", 4: "input"}
@@ -79,6 +81,9 @@ class RegisterRefused(ValueError):
         super().__init__(message)
         self.exception_code = ExcCodes(exception_code)
 
+    def __reduce__(self):  # keep the code across serve's process link
+        return (type(self), (str(self), int(self.exception_code)))
+
 
 class _Refuse(Exception):
     """Answer the request with this exception code."""
@@ -100,6 +105,7 @@ class ModbusServer:
         *,
         writes_allowed=None,
         reply_timeout: float = REPLY_TIMEOUT,
+        events: Any = None,
     ) -> None:
         self.endpoint = endpoint
         self.commands = commands
@@ -107,6 +113,8 @@ class ModbusServer:
         # a callable, so the operator's enable is read at each write (serve --allow-writes)
         self.writes_allowed = writes_allowed or (lambda: bool(getattr(endpoint, "network_writes", False)))
         self.reply_timeout = reply_timeout
+        # serve's event log (emit(kind, message, **fields)): connects, leaves, refused writes
+        self.events = events
         self._loop: asyncio.AbstractEventLoop | None = None
         self._stopping: asyncio.Event | None = None
         self._clients: set[asyncio.Task] = set()
@@ -125,6 +133,10 @@ class ModbusServer:
         if task is not None:
             self._clients.add(task)
         peer = writer.get_extra_info("peername")
+        who = peer_name("modbus", peer)
+        set_client(who)  # this task's context: the requests it submits name their client
+        if self.events is not None:
+            self.events.emit("connect", f"{who} connected", endpoint="modbus", who=who)
         try:
             while True:
                 header = await reader.readexactly(_MBAP.size)
@@ -149,6 +161,8 @@ class ModbusServer:
             if task is not None:
                 self._clients.discard(task)
             writer.close()
+            if self.events is not None:
+                self.events.emit("disconnect", f"{who} disconnected", endpoint="modbus", who=who)
 
     async def _answer(self, pdu: bytes) -> bytes:
         """The reply PDU to one request PDU (at least the function code)."""
@@ -158,11 +172,21 @@ class ModbusServer:
                 return await self._read(fc, pdu)
             if fc == 6 or fc == 16:
                 if not self.writes_allowed():
+                    self._refused_write(fc, pdu)
                     raise _Refuse(ExcCodes.ILLEGAL_FUNCTION)
                 return await (self._write_single(pdu) if fc == 6 else self._write_multiple(pdu))
             raise _Refuse(ExcCodes.ILLEGAL_FUNCTION)
         except _Refuse as r:
             return bytes((fc | 0x80, r.code))
+
+    def _refused_write(self, fc: int, pdu: bytes) -> None:
+        if self.events is None:
+            return
+        address = struct.unpack_from(">H", pdu, 1)[0] if len(pdu) >= 3 else None
+        who = current_client()
+        self.events.emit("write", f"{who}: write FC{fc} at register {address} refused: network writes are not enabled (serve --allow-writes)",
+                         endpoint="modbus", who=who, what=f"FC{fc} register {address}", accepted=False,
+                         reason="network writes are not enabled (serve --allow-writes)")
 
     async def _read(self, fc: int, pdu: bytes) -> bytes:
         if len(pdu) != 5:

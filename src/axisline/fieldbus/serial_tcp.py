@@ -28,6 +28,8 @@ import tty
 from concurrent.futures import TimeoutError as FutureTimeout
 from typing import Any
 
+from .clients import peer_name, set_client
+
 REPLY_TIMEOUT = 5.0  # seconds a client waits for the cycle to take its request
 MAX_CONNECTIONS = 16  # clients served at once (a serial unit has one host; HMIs and tools add a few)
 # pending connects the kernel holds for accept(): socketserver's default of 5 drops the SYNs of
@@ -46,7 +48,23 @@ class _Handler(socketserver.BaseRequestHandler):
         server: "_Server" = self.server  # type: ignore[assignment]
         sock: socket.socket = self.request
         sock.settimeout(None)
+        who = peer_name("serial-tcp", self.client_address)
+        set_client(who)  # this thread's context: the requests it submits name their client
+        events = server.events
+        if events is not None:
+            events.emit("connect", f"{who} connected", endpoint="serial-tcp", who=who)
         session = server.endpoint.session()  # this connection's own buffer and parser state
+        try:
+            self._serve(server, sock, session)
+        finally:
+            close = getattr(session, "close", None)  # a session in serve's cycle process
+            if close is not None:
+                close()
+            if events is not None:
+                events.emit("disconnect", f"{who} disconnected", endpoint="serial-tcp", who=who)
+
+    @staticmethod
+    def _serve(server: "_Server", sock: socket.socket, session: Any) -> None:
         while not server.closing:
             try:
                 data = sock.recv(4096)
@@ -73,8 +91,9 @@ class _Server(socketserver.ThreadingTCPServer):
     # on a client that never sends
     block_on_close = False
 
-    def __init__(self, address: tuple[str, int], endpoint: Any, commands: Any, max_connections: int) -> None:
+    def __init__(self, address: tuple[str, int], endpoint: Any, commands: Any, max_connections: int, events: Any = None) -> None:
         self.endpoint = endpoint
+        self.events = events
         self.commands = commands
         self.max_connections = max_connections
         self.closing = False
@@ -140,13 +159,13 @@ class SerialTcpServer:
     one session per connection, at most `max_connections` at once."""
 
     def __init__(self, endpoint: Any, commands: Any, host: str = "127.0.0.1", port: int = 0, *,
-                 max_connections: int = MAX_CONNECTIONS) -> None:
+                 max_connections: int = MAX_CONNECTIONS, events: Any = None) -> None:
         if not callable(getattr(endpoint, "session", None)):
             raise TypeError(f"{type(endpoint).__name__} has no session(): a byte endpoint must give every "
                             "connection its own parser state (axisline.devices.base.ByteEndpoint)")
         if max_connections < 1:
             raise ValueError(f"max_connections = {max_connections}; allowed is >= 1")
-        self._server = _Server((host, port), endpoint, commands, max_connections)
+        self._server = _Server((host, port), endpoint, commands, max_connections, events)
         self._thread = threading.Thread(target=self._server.serve_forever, name="serial-tcp", daemon=True)
 
     @property

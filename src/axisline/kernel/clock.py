@@ -16,6 +16,7 @@ __all__ = [
     "MIN_PERIOD_US",
     "Clock",
     "SimulatedClock",
+    "Lateness",
     "WallClock",
     "check_period_us",
     "cycle_time",
@@ -89,6 +90,57 @@ class SimulatedClock(Clock):
         self._cycle += 1
 
 
+class Lateness:
+    """How late cycles started after their deadlines: a histogram in 1 us steps up to 100 ms.
+
+    Fixed memory whatever the run length, one list increment per cycle; percentiles are read
+    off the cumulative counts (to the microsecond), the worst case is kept exactly."""
+
+    __slots__ = ("_counts", "samples", "worst", "last")
+
+    BINS = 100_000  # 1 us each: 0 .. 100 ms; later cycles land in the last bin
+
+    def __init__(self) -> None:
+        self._counts = [0] * self.BINS
+        self.samples = 0
+        self.worst = 0.0
+        self.last = 0.0
+
+    def add(self, late_s: float) -> None:
+        self.last = late_s
+        i = int(late_s * 1e6)
+        if i < 0:
+            i = 0
+        elif i >= 100_000:
+            i = 99_999
+        self._counts[i] += 1
+        self.samples += 1
+        if late_s > self.worst:
+            self.worst = late_s
+
+    def percentile(self, p: float) -> float:
+        """Lateness in seconds that ``p`` percent of the cycles did not exceed (bin's upper edge)."""
+        if not self.samples:
+            return 0.0
+        rank = p / 100.0 * self.samples
+        seen = 0
+        for i, n in enumerate(self._counts):
+            seen += n
+            if n and seen >= rank:
+                return min((i + 1) * 1e-6, self.worst)
+        return self.worst
+
+    def summary(self) -> dict[str, float]:
+        """p50 / p99 / p99.9 / max in microseconds and the number of cycles measured."""
+        return {
+            "cycles": self.samples,
+            "p50_us": round(self.percentile(50) * 1e6, 1),
+            "p99_us": round(self.percentile(99) * 1e6, 1),
+            "p99_9_us": round(self.percentile(99.9) * 1e6, 1),
+            "max_us": round(self.worst * 1e6, 1),
+        }
+
+
 class WallClock(Clock):
     """Paces cycles on the wall clock (soft real time: perf_counter + sleep).
 
@@ -97,6 +149,13 @@ class WallClock(Clock):
     a short stall is made up by the following cycles. After a stall of more than
     ``stall_cycles`` periods the grid is re-based on the present instead, because racing
     through hundreds of cycles back to back would hit the plant with a burst.
+
+    The wait before a deadline is the cycle's idle time: ``idle(deadline)``, when set, runs
+    there first (`serve` answers its clients' requests and collects garbage in it, so neither
+    happens inside a cycle; it is called with a deadline already passed too), then the clock sleeps, and the last ``busy_wait_us`` before the
+    deadline it spins instead: the OS wakes a sleeper up to tens of microseconds late, a
+    spinning thread is already running. ``lateness`` keeps the distribution of how late each
+    cycle started.
     """
 
     __slots__ = (
@@ -109,6 +168,9 @@ class WallClock(Clock):
         "overruns",
         "rebases",
         "late_max",
+        "lateness",
+        "idle",
+        "_busy_wait_s",
     )
 
     def __init__(
@@ -118,8 +180,16 @@ class WallClock(Clock):
         stall_cycles: int = 100,
         timer: Callable[[], float] = time.perf_counter,
         sleep: Callable[[float], None] = time.sleep,
+        busy_wait_us: int = 0,
+        idle: Callable[[float], None] | None = None,
     ) -> None:
         super().__init__(period_us)
+        if isinstance(busy_wait_us, bool) or not isinstance(busy_wait_us, int) or not 0 <= busy_wait_us <= self._period_us:
+            raise ValueError(f"busy_wait_us must be an integer in 0..{self._period_us} (the period), got {busy_wait_us!r}")
+        self._busy_wait_s = busy_wait_us / 1_000_000
+        self.idle = idle
+        """Called with the next deadline (timer seconds) when a cycle ends before it."""
+        self.lateness = Lateness()
         if isinstance(stall_cycles, bool) or not isinstance(stall_cycles, int) or stall_cycles < 1:
             raise ValueError(f"stall_cycles must be an integer >= 1, got {stall_cycles!r}")
         self._period_s = self._period_us / 1_000_000
@@ -144,9 +214,18 @@ class WallClock(Clock):
         self._cycles_since_base += 1
         # Deadlines are base + n * period, not accumulated, so the grid does not drift.
         deadline = self._base + self._cycles_since_base * self._period_s
+        idle = self.idle
+        if idle is not None:
+            # also when the cycle is late: then idle does only what cannot wait (it answers one
+            # waiting request, so clients of a busy machine are slowed down, never starved)
+            idle(deadline)
+            now = self._timer()
         if now < deadline:
-            while now < deadline:
-                self._sleep(deadline - now)
+            wake = deadline - self._busy_wait_s
+            while now < wake:
+                self._sleep(wake - now)
+                now = self._timer()
+            while now < deadline:  # the busy-wait tail (empty unless busy_wait_us)
                 now = self._timer()
         else:
             self.overruns += 1
@@ -157,4 +236,5 @@ class WallClock(Clock):
         late = now - deadline
         if late > self.late_max:
             self.late_max = late
+        self.lateness.add(late)
         self._cycle += 1

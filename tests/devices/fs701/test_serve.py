@@ -244,15 +244,6 @@ def test_serve_answers_drivecom_over_tcp_and_stops_on_sigterm():
     assert "stopped" in out
 
 
-@pytest.mark.parametrize("endpoint", ["--http"])
-def test_serve_refuses_an_endpoint_the_fs701_does_not_offer(endpoint):
-    res = subprocess.run(
-        [sys.executable, "-m", "axisline.cli", "serve", str(EXAMPLE), endpoint, "127.0.0.1:0", "--duration", "0.1"],
-        capture_output=True, text=True, timeout=30,
-    )
-    assert res.returncode == 2 and endpoint in res.stderr + res.stdout
-
-
 def test_the_serial_document_is_the_generated_one():
     from axisline.devices.fs701.report import serial_markdown
 

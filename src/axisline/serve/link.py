@@ -1,0 +1,311 @@
+"""The link between the cycle process and the endpoint process of `axisline serve`.
+
+Why two processes: protocol servers and the HMI are Python threads; in the cycle's process
+they compete with the cycle for the interpreter, and 50 polling clients made the cycle up to
+80 ms late (Modbus) and 500 ms (serial). Here the cycle runs alone in its process (as the
+real-time thread of LinuxCNC does) and the servers run in an endpoint process; a request
+crosses one pipe and is answered by the cycle process in its idle time, between two cycles
+(`CycleLink.pump`, called by the WallClock before it sleeps), so a request still sees and
+changes the machine only at a cycle boundary, as before, and never inside a cycle.
+
+Messages (tuples, pickled by multiprocessing.Connection):
+
+    endpoint -> cycle   ("call", id, target, method, args, who, endpoint)
+                        ("session", id, target, who, endpoint)   a byte session, by handle
+                        ("close", handle)                        the connection ended
+                        ("listening", kind, where) / ("started",) / ("failed", text)
+    cycle -> endpoint   ("reply", id, ok, value or exception)
+                        ("event", kind, message, fields)
+                        ("shutdown",)
+
+Targets are the device's endpoints by role ("byte", "register") and the HMI's view ("hmi");
+sessions get handles "s1", "s2", ... A reply is pickled by the sender thread of the cycle
+process, so a slow endpoint process never blocks a cycle. A request once sent is not
+withdrawn (a cancelled Future would say "not done" of a write the cycle may already have
+applied): it is answered, or failed with `LinkClosed` when the cycle process goes away.
+"""
+
+from __future__ import annotations
+
+import itertools
+import pickle
+import queue
+import threading
+import time
+from concurrent.futures import Future
+from typing import Any, Callable
+
+from ..fieldbus.clients import current_client
+from ..kernel import requests
+from .audit import Audit
+
+__all__ = ["CycleLink", "EndpointLink", "LinkClosed", "RemoteCommands", "RemoteEndpoint", "RemoteError"]
+
+
+class LinkClosed(ConnectionError):
+    """The cycle process is gone (stopped or killed): the request was not answered."""
+
+
+class RemoteError(RuntimeError):
+    """An exception of the cycle process that could not be pickled, as its type and text."""
+
+
+def _portable(exc: BaseException) -> BaseException:
+    try:
+        pickle.loads(pickle.dumps(exc))
+        return exc
+    except Exception:
+        return RemoteError(f"{type(exc).__name__}: {exc}")
+
+
+# ---------------------------------------------------------------------------- cycle side
+
+
+class CycleLink:
+    """The cycle process's end: answers requests at cycle boundaries, sends events."""
+
+    def __init__(self, conn: Any, targets: dict[str, Callable[[], Any]], audit: Audit | None = None) -> None:
+        self._conn = conn
+        self._factories = targets  # role -> factory, made on first use (a device may offer none)
+        self._objects: dict[str, Any] = {}
+        self._handles = itertools.count(1)
+        self.audit = audit
+        self._out: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._sender = threading.Thread(target=self._send_loop, name="link-send", daemon=True)
+        self._sender.start()
+        self.closed = False
+        self.answered = 0
+        self.endpoint_messages: list[tuple] = []  # listening/started/failed, read by serve
+
+    # -- sending (never blocks the cycle) ------------------------------------------------
+
+    def send(self, message: tuple) -> None:
+        self._out.put(message)
+
+    def emit(self, kind: str, message: str, **fields: Any) -> None:
+        self._out.put(("event", kind, message, fields))
+
+    def _send_loop(self) -> None:
+        while True:
+            message = self._out.get()
+            if message is None:
+                return
+            try:
+                self._conn.send(message)
+            except (OSError, EOFError, ValueError):
+                self.closed = True
+                return
+            except Exception as exc:  # an unpicklable reply value: answer with its text
+                if message[0] == "reply":
+                    try:
+                        self._conn.send(("reply", message[1], False, RemoteError(f"unsendable reply: {exc}")))
+                    except (OSError, EOFError, ValueError):
+                        self.closed = True
+                        return
+
+    def close(self) -> None:
+        self._out.put(("shutdown",))
+        self._out.put(None)
+        self._sender.join(5.0)
+
+    # -- receiving ------------------------------------------------------------------------
+
+    def _target(self, name: str) -> Any:
+        obj = self._objects.get(name)
+        if obj is None:
+            factory = self._factories.get(name)
+            if factory is None:
+                raise LookupError(f"no endpoint {name!r} on this machine")
+            obj = self._objects[name] = factory()
+        return obj
+
+    def pump(self, until: float, timer: Callable[[], float] = time.perf_counter) -> int:
+        """Answer requests until ``until`` (timer seconds) or none is waiting; at least one
+        waiting request is answered even when the cycle has no idle time left, so clients
+        are slowed down by a busy cycle but never starved. Returns how many were handled."""
+        conn = self._conn
+        handled = 0
+        try:
+            while conn.poll(0):
+                message = conn.recv()
+                self._handle(message)
+                handled += 1
+                if timer() >= until:
+                    break
+        except (EOFError, OSError):
+            self.closed = True
+        return handled
+
+    def _handle(self, message: tuple) -> None:
+        kind = message[0]
+        if kind == "call":
+            _, rid, target, method, args, who, endpoint = message
+            self._call(rid, target, method, args, who, endpoint)
+        elif kind == "session":
+            _, rid, target, who, endpoint = message
+            try:
+                session = self._target(target).session()
+            except Exception as exc:
+                self.send(("reply", rid, False, _portable(exc)))
+                return
+            handle = f"s{next(self._handles)}"
+            self._objects[handle] = session
+            self.send(("reply", rid, True, handle))
+        elif kind == "close":
+            self._objects.pop(message[1], None)
+        else:  # listening / started / failed: for serve's start-up
+            self.endpoint_messages.append(message)
+
+    def _call(self, rid: int, target: str, method: str, args: tuple, who: str, endpoint: str) -> None:
+        audit = self.audit
+        request = requests.Request(who, endpoint, audit.snapshot if audit is not None else None)
+        before = None
+        try:
+            obj = self._target(target)
+            fn = getattr(obj, method)
+            if audit is not None and method == "write_registers":
+                before = audit.registers_before(obj, *args)
+            requests.current[0] = request
+            try:
+                value, ok = fn(*args), True
+            finally:
+                requests.current[0] = None
+        except Exception as exc:
+            value, ok = _portable(exc), False
+        self.answered += 1
+        self.send(("reply", rid, ok, value))
+        if audit is not None:
+            if method == "write_registers":
+                audit.register_write(request, args, before, ok, value)
+            elif request.write:
+                audit.byte_write(request, args, ok, value)
+
+
+# ---------------------------------------------------------------------------- endpoint side
+
+
+class EndpointLink:
+    """The endpoint process's end: sends requests, resolves their Futures, logs events."""
+
+    def __init__(self, conn: Any, on_event: Callable[[str, str, dict[str, Any]], None]) -> None:
+        self._conn = conn
+        self._on_event = on_event
+        self._ids = itertools.count(1)
+        self._waiting: dict[int, Future[Any]] = {}
+        self._lock = threading.Lock()
+        self._send_lock = threading.Lock()
+        self.shutdown = threading.Event()
+        self._reader = threading.Thread(target=self._read_loop, name="link-read", daemon=True)
+
+    def start(self) -> "EndpointLink":
+        self._reader.start()
+        return self
+
+    def send(self, message: tuple) -> None:
+        with self._send_lock:
+            self._conn.send(message)
+
+    def _request(self, message_of: Callable[[int], tuple]) -> Future[Any]:
+        future: Future[Any] = Future()
+        future.set_running_or_notify_cancel()  # sent requests are not withdrawn (module docstring)
+        rid = next(self._ids)
+        with self._lock:
+            if self.shutdown.is_set():
+                future.set_exception(LinkClosed("the machine is not running"))
+                return future
+            self._waiting[rid] = future
+        try:
+            self.send(message_of(rid))
+        except (OSError, EOFError, ValueError) as exc:
+            with self._lock:
+                self._waiting.pop(rid, None)
+            future.set_exception(LinkClosed(f"the machine is not running ({exc})"))
+        return future
+
+    def call(self, target: str, method: str, args: tuple, who: str = "", endpoint: str = "") -> Future[Any]:
+        return self._request(lambda rid: ("call", rid, target, method, tuple(args), who, endpoint))
+
+    def open_session(self, target: str, who: str = "", endpoint: str = "") -> Future[Any]:
+        return self._request(lambda rid: ("session", rid, target, who, endpoint))
+
+    def _read_loop(self) -> None:
+        try:
+            while True:
+                message = self._conn.recv()
+                kind = message[0]
+                if kind == "reply":
+                    _, rid, ok, value = message
+                    with self._lock:
+                        future = self._waiting.pop(rid, None)
+                    if future is not None:
+                        (future.set_result if ok else future.set_exception)(value)
+                elif kind == "event":
+                    self._on_event(message[1], message[2], message[3])
+                elif kind == "shutdown":
+                    break
+        except (EOFError, OSError):
+            pass
+        finally:
+            with self._lock:
+                self.shutdown.set()
+                waiting, self._waiting = self._waiting, {}
+            for future in waiting.values():
+                future.set_exception(LinkClosed("the machine stopped before answering"))
+
+
+class RemoteMethod:
+    """`target.method` in the cycle process; what a protocol server submits."""
+
+    __slots__ = ("target", "method", "__name__")
+
+    def __init__(self, target: str, method: str) -> None:
+        self.target = target
+        self.method = method
+        self.__name__ = method
+
+    def __call__(self, *args: Any) -> Any:  # pragma: no cover - always submitted, never called here
+        raise RuntimeError("a remote method runs in the cycle process: submit it to RemoteCommands")
+
+
+class RemoteSession:
+    """One connection's byte session, living in the cycle process."""
+
+    def __init__(self, link: EndpointLink, handle: str) -> None:
+        self._link = link
+        self.handle = handle
+        self.feed = RemoteMethod(handle, "feed")
+
+    def close(self) -> None:
+        try:
+            self._link.send(("close", self.handle))
+        except (OSError, EOFError, ValueError):
+            pass
+
+
+class RemoteEndpoint:
+    """A device endpoint ("byte" or "register") as the protocol servers expect it."""
+
+    def __init__(self, link: EndpointLink, target: str, endpoint: str) -> None:
+        self._link = link
+        self._target = target
+        self._endpoint = endpoint
+        self.read_registers = RemoteMethod(target, "read_registers")
+        self.write_registers = RemoteMethod(target, "write_registers")
+
+    def session(self) -> RemoteSession:
+        handle = self._link.open_session(self._target, current_client(), self._endpoint).result()
+        return RemoteSession(self._link, handle)
+
+
+class RemoteCommands:
+    """Stands in for the machine's CommandQueue in the endpoint process: `submit(method, *args)`
+    sends the call to the cycle process; the Future resolves with its answer."""
+
+    def __init__(self, link: EndpointLink, endpoint: str) -> None:
+        self._link = link
+        self._endpoint = endpoint
+
+    def submit(self, fn: RemoteMethod, /, *args: Any) -> Future[Any]:
+        if not isinstance(fn, RemoteMethod):
+            raise TypeError(f"only remote methods cross to the cycle process, got {fn!r}")
+        return self._link.call(fn.target, fn.method, args, current_client(), self._endpoint)
