@@ -167,3 +167,61 @@ def test_wall_clock_late_max_includes_oversleeping() -> None:
 def test_wall_clock_rejects_bad_stall_cycles() -> None:
     with pytest.raises(ValueError, match="stall_cycles"):
         WallClock(1000, stall_cycles=0)
+
+
+def test_wall_clock_runs_the_idle_work_before_it_sleeps_and_spins_the_busy_wait_tail() -> None:
+    fake = FakeTime()
+    seen: list[float] = []
+
+    def idle(deadline: float) -> None:
+        seen.append(deadline - fake.t)  # idle time left when the cycle's work is done
+        fake.t += 0.0002  # answering requests takes 0.2 ms of it
+
+    reads = []
+
+    def spinning_timer() -> float:  # each read while spinning takes 10 us
+        reads.append(fake.t)
+        if fake.t >= 100.0009 - 1e-12:
+            fake.t += 0.00001
+        return fake.t
+
+    clock = WallClock(1000, timer=spinning_timer, sleep=fake.sleep, busy_wait_us=100, idle=idle)
+    clock.tick()  # anchors at 100.0; idle is not called before there is a deadline
+    fake.t += 0.0003
+    clock.tick()
+    assert seen == [pytest.approx(0.0007)]
+    # it slept only to 100 us before the deadline, then read the timer until the deadline
+    assert fake.slept == [pytest.approx(0.0004)]
+    assert fake.t >= 100.001 and len(reads) >= 10  # spun through the last 100 us
+    assert clock.lateness.samples == 1
+
+
+def test_wall_clock_calls_idle_when_late_too_with_the_passed_deadline() -> None:
+    fake = FakeTime()
+    seen: list[float] = []
+    clock = WallClock(1000, timer=fake.timer, sleep=fake.sleep, idle=lambda d: seen.append(d - fake.t))
+    clock.tick()
+    fake.t += 0.003  # a 3 ms cycle
+    clock.tick()
+    assert seen and seen[0] < 0  # serve answers one waiting request even then
+    assert clock.lateness.last == pytest.approx(0.002)
+
+
+def test_busy_wait_longer_than_the_period_is_refused_with_the_range() -> None:
+    with pytest.raises(ValueError, match=r"busy_wait_us must be an integer in 0\.\.1000"):
+        WallClock(1000, busy_wait_us=1500)
+
+
+def test_lateness_percentiles_to_the_microsecond_and_the_exact_worst() -> None:
+    from axisline.kernel.clock import Lateness
+
+    late = Lateness()
+    for us in range(1, 1001):  # 1 .. 1000 us, one cycle each
+        late.add(us * 1e-6 - 1e-9)
+    late.add(0.25)  # one stall beyond the histogram's 100 ms
+    s = late.summary()
+    assert s["cycles"] == 1001
+    assert s["p50_us"] == pytest.approx(501, abs=1)
+    assert s["p99_us"] == pytest.approx(991, abs=1)
+    assert s["max_us"] == pytest.approx(250000.0)
+    assert Lateness().summary()["p99_us"] == 0.0

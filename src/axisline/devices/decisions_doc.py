@@ -16,10 +16,16 @@ from pathlib import Path
 MARKER = "## Device personalities"
 
 _DEVICES = (
-    ("FS701 flying shear / saw (issue 4)", "fs701"),
-    ("COMPAX cam controller (issue 5)", "compax"),
-    ("WAGO 750-672 stepper module (issue 6)", "wago672"),
-    ("Rexroth CLM1.4 (issue 11)", "clm"),
+    ("FS701 flying shear / saw (issue 4)", "devices/fs701"),
+    ("COMPAX cam controller (issue 5)", "devices/compax"),
+    ("WAGO 750-672 stepper module (issue 6)", "devices/wago672"),
+    ("Rexroth CLM1.4 (issue 11)", "devices/clm"),
+    # read as files, never imported: the layers above the devices keep their decisions here too
+    ("Serving a machine and the web HMI (issue 17)", "serve"),
+    ("Web HMI pages (issue 17)", "hmi"),
+    ("Web HMI device views (issue 17)", "hmi/devices"),
+    ("CiA 402 drives over CANopen (issue 20)", "drives"),
+    ("Sweeps on Dask (issue 21)", "sweep"),
 )
 
 
@@ -30,7 +36,7 @@ def _decisions(path: Path) -> str | None:
 
 
 def render(package: Path | None = None) -> str:
-    root = package or Path(__file__).resolve().parent
+    root = package or Path(__file__).resolve().parent.parent  # the axisline package
     out = [
         MARKER,
         "",
@@ -45,7 +51,7 @@ def render(package: Path | None = None) -> str:
         for path in sorted((root / name).glob("*.py")):
             text = _decisions(path)
             if text:
-                blocks += [f"#### `axisline/devices/{name}/{path.name}`", "", text, ""]
+                blocks += [f"#### `axisline/{name}/{path.name}`", "", text, ""]
         if blocks:
             out += [f"### {title}", ""] + blocks
     return "\n".join(out).rstrip() + "\n"

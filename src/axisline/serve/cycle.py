@@ -13,6 +13,20 @@ in this order:
 3. faults: every 10 ms the axes' and the device's faults are compared with the last look;
    a new fault and a cleared one become events;
 4. garbage: with `gc = "idle"`, a collection if enough time is left (realtime.py).
+
+Decisions (issue 17 point -> choice, why):
+
+1. "Overruns are counted" -> an overrun is a cycle that starts later than `overrun_us` after
+   its deadline (default: one period), not every cycle a microsecond late: sleep jitter of tens
+   of microseconds is normal on a general-purpose OS and is what the lateness percentiles
+   show. Events are rate-limited to one a second (with the count), so an overloaded machine
+   cannot flood its own log. Test: tests/serve/test_serve.py::test_overruns_are_counted_and_can_stop_the_axes.
+2. "the reaction is configurable (log, or stop the axes with their ramps)" -> "stop" stops
+   every axis with its stop ramp (the device's own stop where it has one), once per episode;
+   serving goes on, so the operator sees why in the HMI and the log. Same test.
+3. Faults are compared every 10 ms of wall time (not every cycle): a fault event 10 ms late
+   is immaterial to an operator, a per-cycle comparison costs every cycle.
+   Test: test_a_fault_appears_in_the_event_log.
 """
 
 from __future__ import annotations

@@ -10,6 +10,16 @@ machine the scheduler prefers the cycle, and on the CPUs the cycle does not use 
 It ignores Ctrl-C and SIGTERM (they go to the whole process group): the cycle process
 decides when to stop, stops the axes with their ramps, and then sends "shutdown"; if the
 cycle process dies (kill -9), the link reaches end-of-file and this process ends too.
+
+Decisions (issue 17 point -> choice, why):
+
+1. "An event log ... on the console in readable form" -> on standard error; standard output
+   keeps the machine-readable lines that scripts and tests parse ("modbus HOST:PORT",
+   "ready", "stopped"). Test: tests/serve/test_serve.py::test_the_event_log_names_who_wrote_what_old_to_new_and_the_refusals.
+2. The endpoint process runs at nice 5 and, with `[realtime] cpus`, on the CPUs the cycle does
+   not use: under load the OS prefers the cycle. Test: the serve lateness bench (`make bench`).
+3. kill -9 of the cycle process ends the endpoint process (end-of-file on the link), so no
+   orphan keeps the ports. Test: test_the_endpoint_process_ends_when_the_cycle_process_is_killed.
 """
 
 from __future__ import annotations
@@ -49,7 +59,11 @@ def _console(line: str) -> None:
         pass
 
 
-def endpoint_main(conn: Any, spec: EndpointSpec) -> None:
+def endpoint_main(conn: Any, spec: EndpointSpec, parent_end: Any = None) -> None:
+    if parent_end is not None:
+        # the fork copied the cycle process's end of the pipe too: closed here, so that the
+        # cycle process's death (kill -9) is an end-of-file on the link and this process ends
+        parent_end.close()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     try:

@@ -23,6 +23,24 @@ sessions get handles "s1", "s2", ... A reply is pickled by the sender thread of 
 process, so a slow endpoint process never blocks a cycle. A request once sent is not
 withdrawn (a cancelled Future would say "not done" of a write the cycle may already have
 applied): it is answered, or failed with `LinkClosed` when the cycle process goes away.
+
+Decisions (issue 17 point -> choice, why):
+
+1. "the cycle runs in a process of its own and talks to the endpoint/HMI process through a
+   shared-memory image published once per cycle and a command queue" -> one pipe, and every
+   request (reads included) is answered by the cycle process in its idle time; no image is
+   published. Why: the answers of the serial protocols (COMPAX, CLM, FS701 Drivecom) and of the
+   HMI's device views are computed by the device code, not read from a register image; a
+   shared image would mean a second copy of every device's read path in the endpoint process.
+   Answering in the idle time costs the cycle nothing while it has idle time, keeps one read
+   path, and keeps reads consistent with a cycle boundary. Tests: tests/serve/test_link.py,
+   tests/serve/test_serve.py::test_the_endpoints_run_in_a_process_of_their_own; `make bench`
+   (serve lateness) holds the numbers.
+2. A request once sent is never withdrawn (module docstring); a client waits for its answer
+   or for the link to close. Test: test_requests_fail_with_link_closed_when_the_cycle_process_goes_away.
+3. With no idle time left, one waiting request is still answered per cycle: clients of an
+   overloaded machine are slowed down, never starved. Test:
+   test_the_pump_answers_one_waiting_request_even_without_idle_time.
 """
 
 from __future__ import annotations

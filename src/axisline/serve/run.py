@@ -78,7 +78,7 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
     )
     ctx = multiprocessing.get_context("fork")  # before any thread of this process exists
     here, there = ctx.Pipe(duplex=True)
-    child = ctx.Process(target=endpoint_main, args=(there, spec), name="axisline-endpoints", daemon=True)
+    child = ctx.Process(target=endpoint_main, args=(there, spec, here), name="axisline-endpoints", daemon=True)
     child.start()
     there.close()
 
