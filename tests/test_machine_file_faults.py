@@ -319,7 +319,7 @@ def _paths(node, at=()):
 _REPLACEMENTS = st.sampled_from(
     ["text", "", True, -1, 0, 2**70, -1e300, 1e300, 1e-300, math.nan, math.inf, -math.inf, [], [1, "a"], {}, {"k": 1}]
 )
-_FILE_KEYS = ("csv", "parameter_file", "memory_file", "save_parameters")
+_FILE_KEYS = ("csv", "parameter_file", "memory_file", "save_parameters", "program_file")
 _EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.toml"))
 
 

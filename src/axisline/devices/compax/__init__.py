@@ -11,6 +11,11 @@ every module, and the cam operation in ``camop``, raise the same thing):
   point table, CSV and motion-law import.
 * ``ascii``      - the RS232/RS485 ASCII interface (`AsciiEndpoint.feed(bytes) -> bytes`).
 * ``status``     - the status values S1, S2, S13/S14, S30, S41 ... S52.
+* ``program``    - the program memory: sets N001 ... N250, their commands and grammar.
+* ``programrun`` - the interpreter that runs the sets on the cam operation (P210, START/STOP/BREAK).
+* ``endpoint``   - the device side of the interface (write enable, storing before the reply,
+  the program lines) and the stored files; ``config`` - the [device] table;
+  ``preparedcurve`` - a curve made ready for the cam operation; ``camop`` - the cam operation.
 
 Errors
 ------

@@ -538,15 +538,14 @@ class CamMemory:
 
     _FILE_FORMAT = "axisline-compax-cam-memory"
 
+    def document(self) -> dict[str, Any]:
+        """The memory (the Zero-Power-RAM) as the file's JSON document (others may add keys)."""
+        return {"format": self._FILE_FORMAT, "version": 1, "size": SIZE,
+                "words": "".join(f"{w:06X}" for w in self._ram[1:])}
+
     def save(self, path: str | os.PathLike[str]) -> None:
-        """Write the memory (the Zero-Power-RAM) to ``path`` atomically: a failed save keeps the old file."""
-        document = {
-            "format": self._FILE_FORMAT,
-            "version": 1,
-            "size": SIZE,
-            "words": "".join(f"{w:06X}" for w in self._ram[1:]),
-        }
-        atomic_write_text(path, json.dumps(document) + "\n")
+        """Write the memory to ``path`` atomically: a failed save keeps the old file."""
+        atomic_write_text(path, json.dumps(self.document()) + "\n")
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> CamMemory:

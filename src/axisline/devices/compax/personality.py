@@ -8,11 +8,12 @@
     slave = "knife"                    # the machine axis COMPAX drives (its power stage: I12)
     master = "wheel"                   # a [[master]] (wheel, axis_encoder, ...), an axis with an
                                        # encoder, or "internal" (the internal time base, P30 = 1)
-    memory_file = "knife.cam.json"     # the cam memory: loaded at start if present, saved by persist()
+    memory_file = "knife.cam.json"     # the cam memory (and program sets): loaded at start if present
+    program_file = "knife.prg"         # program sets "N001: SETC 1" for a new program memory
     parameters = { P33 = 1, P32 = 450.0, P180 = 10 }          # written, then VC and VP
-    inputs = { I13 = true, I14 = "labels", I16 = true }       # I12 ... I16 wiring
+    inputs = { I13 = true, I14 = "labels", I16 = true }       # I1 ... I16 wiring
     outputs = { O16 = "knife_sync" }                          # O1 ... O16 to [io] outputs
-    startup = ["SETC 1", "SETM 0", "LOOP 0"]                  # run at start, like a COMPAX program
+    startup = ["SETC 1", "SETM 0", "LOOP 0"]                  # sent at start, as a host would ("START")
 
     [[device.curves]]                  # written into a new cam memory (not when the file exists)
     number = 1
@@ -23,8 +24,10 @@
     label_window = 0.1
 
 What happens each 1 ms cycle (`tick`, LOGIC stage, before the slave samples its set point):
-the start-up program advances (a line waits while the slave is positioning, while a LOOP is
-active unless P210 = 1, and a LOOP / POSR CAM waits for the power stage), the label sensor's
+the start-up list advances (a line waits while the slave is positioning, while a LOOP is
+active unless P210 = 1, and a LOOP / POSR CAM / POSA / POSR waits for the power stage), the
+program memory's interpreter runs one set (`programrun.ProgramRun`: started by START, over
+the interface or in the start-up list; its errors are faults of the run), the label sensor's
 sub-cycle edges of the last plant step go to the label synchronisation (I14 wired to a
 print-mark sensor or switch; an io input or a constant is read as a level), I16 wired to a
 sensor latches the master encoder at its rising edge (interpolated in the cycle), the cam
@@ -38,15 +41,15 @@ to true unless given). The master encoder's scaling P98 / P143 is derived from t
 (`derive_master_scaling`) unless device.parameters sets them.
 
 The ASCII interface (`byte_endpoint`, `axisline serve --serial-tcp / --serial-pty`) is
-`ascii.AsciiEndpoint` on this device's cam memory, parameters, cam operation and live status
-values. Reads (F/I/B<address>, P<n>, S<n>) are always answered; every write (memory,
+`endpoint.CompaxEndpoint` on this device's cam memory, program memory, parameters, cam
+operation and live status values. Reads (F/I/B<address>, P<n>, S<n>) are always answered; every write (memory,
 parameters, VF, VP, RESETF, SETC, LOOP, ...) is refused with the device's error reply
 (``!E104`` for memory and parameters, ``!E107`` for commands) unless the operator enabled
 network writes (``serve --allow-writes``); a refused or wrong line changes nothing.
 
 What the interface acknowledges is stored, as the device keeps its Zero-Power-RAM and
 parameters through a power cut: a line that changes the cam memory (F/I/B<address>=...,
-RESETF) or the written parameters (P<n>=..., RESETP) is saved to memory_file /
+RESETF), a program set (N<n>: ..., kept in the memory file) or the written parameters (P<n>=..., RESETP) is saved to memory_file /
 parameter_file (atomic write, fsync, rename) before its reply goes out, so a kill -9 right
 after the reply keeps it. A save that fails is undone and answered ``!E108`` (S30 = 108).
 Both files must be writable when the machine file is checked, and a save's temporary file
@@ -70,19 +73,15 @@ Decisions (each has a test in tests/devices/compax/test_personality.py):
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from pathlib import Path
-from typing import Annotated, Any, Callable, Literal
+from typing import Any, Callable
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints, field_validator, model_validator
-
-from axisline.configerrors import ConfigError, FilePath, read_text
+from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
-from axisline.devices.compax import E_NOT_AVAILABLE, E_RESERVED, E_STORE, CompaxError
-from axisline.devices.compax.ascii import MAX_LINE, AsciiEndpoint
-from axisline.devices.compax.cammemory import MAX_CURVES, MAX_POINTS_PER_CURVE, CamMemory
+from axisline.devices.compax import CompaxError
+from axisline.devices.compax.cammemory import CamMemory
 from axisline.devices.compax.camop import CamOperation, CamState, analog_volts
 from axisline.devices.compax.curves import (
     CurveRecord,
@@ -92,12 +91,22 @@ from axisline.devices.compax.curves import (
     read_curve,
     write_curve,
 )
+from axisline.devices.compax.config import CompaxConfig, CurveEntry, derive_master_scaling
+from axisline.devices.compax.endpoint import (
+    CompaxEndpoint,
+    LiveStatus,
+    ProgramInterface,
+    load_parameters,
+    save_parameters,
+    save_store,
+    stored_program,
+)
 from axisline.devices.compax.label import LabelSync
 from axisline.devices.compax.masterchain import param
-from axisline.devices.compax.parameters import PARAMETERS, Parameters
+from axisline.devices.compax.parameters import Parameters
+from axisline.devices.compax.program import ProgramMemory, read_program_file
+from axisline.devices.compax.programrun import ProgramRun
 from axisline.devices.compax.report import CycleLog, converged_after, write_report
-from axisline.devices.compax.status import StatusValues, format_status
-from axisline.kernel import atomic_write_text
 from axisline.kernel.atomic import unwritable_reason
 from axisline.motion.axis import AxisState
 
@@ -111,274 +120,11 @@ __all__ = [
     "save_parameters",
 ]
 
-Signal = Annotated[str, StringConstraints(min_length=1, max_length=130, pattern=r"^[A-Za-z0-9_.\-]+$")]
-Name = Annotated[str, StringConstraints(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_\-]+$")]
-InputName = Literal["I12", "I13", "I14", "I15", "I16"]
-OutputName = Literal["O1", "O2", "O3", "O4", "O5", "O6", "O7", "O8", "O9", "O10", "O11", "O12", "O13", "O14", "O15", "O16"]
 
 _STATUS_NUMBERS = (1, 2, 13, 14, 30, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51, 52)
 _STATE_CODE = {s: i for i, s in enumerate(CamState)}
 _MOVING = (AxisState.DISCRETE_MOTION, AxisState.CONTINUOUS_MOTION, AxisState.HOMING, AxisState.STOPPING)
-_PARAM_FILE_FORMAT = "axisline-compax-parameters"
-
-# lines of the start-up program (spaces removed, upper case): the ASCII interface's and WAIT ms
-_PROGRAM_LINES = tuple(
-    re.compile(p)
-    for p in (
-        r"[IFB]\d+(=.+)?",
-        r"P\d+(=.+)?",
-        r"S\d+",
-        r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR",
-        r"(SETC|SC|SETM|SM|LOOP|LP).+",
-        r"WAIT\d+(\.\d*)?",
-    )
-)
-_MOTION = re.compile(r"LOOP|LP|POSRCAM|PR")
-# writes of the ASCII interface (refused from the network unless writes are enabled)
-_DATA_WRITE = re.compile(r"[IFB]\d+=.*|P\d+=.*")
-# lines that change what the device keeps through a power cut (saved before the reply)
-_STORING = re.compile(r"[IFB]\d+=.*|P\d+=.*|RESETF|RESETP")
-_COMMAND = re.compile(r"RESETF|VF|VP|VC|RESETP|SETS|SS|POSRCAM|PR|POSAHOME|(SETC|SC|SETM|SM|LOOP|LP).+")
-_STATUS_READ = re.compile(r"S(\d+)")
-
-
-# ---------------------------------------------------------------------------------------
-# configuration
-
-
-def _program_line(line: str) -> str:
-    key = "".join(line.split()).upper()
-    if not any(p.fullmatch(key) for p in _PROGRAM_LINES):
-        raise ValueError(
-            "not a line of the ASCII interface (SETC n, SETM x, SETS, POSR CAM, LOOP m, F/I/B<address>=value, "
-            "P<n>=value, VP, VC, VF, RESETF, RESETP) or WAIT ms"
-        )
-    return line
-
-
-ProgramLine = Annotated[str, StringConstraints(min_length=1, max_length=MAX_LINE), AfterValidator(_program_line)]
-
-
-class CurveEntry(BaseModel):
-    """One curve written into a new cam memory: from a CSV file, motion-law segments or a [[cam]]."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    number: int = Field(ge=1, le=MAX_CURVES, description="curve number n (SETC n); curves are numbered 1, 2, ... without gaps")
-    csv: FilePath = Field(
-        None, min_length=1, max_length=4096,
-        description="a master,slave CSV (slave in units), relative to the machine file; equidistant, or give points to resample",
-    )
-    segments: list[dict[str, Any]] | None = Field(
-        None, max_length=1000, description="motion-law segments (master_end, slave_end, law) as in [[cam]]; needs master_period and points"
-    )
-    cam: Name | None = Field(None, description="the name of a [[cam]] of the machine file; needs points")
-    master_period: float | None = Field(None, gt=0.0, le=8_388_607.0, description="segments: the master cycle M_T, master units")
-    start: float = Field(0.0, ge=-1e9, le=1e9, description="segments: slave position at master 0")
-    points: int | None = Field(
-        None, ge=2, le=MAX_POINTS_PER_CURVE, description="set points to sample (equidistant over M_T); a CSV is resampled when given"
-    )
-    slave_cycle: float | None = Field(
-        None, ge=-8_388_607.0, le=8_388_607.0, description="S_T, slave units (none: the largest |slave value| of the curve)"
-    )
-    coupling: float = Field(0.0, ge=0.0, le=1.0, description="M_E, coupling position, fraction of M_T")
-    synchronous: float = Field(0.0, ge=0.0, le=1.0, description="M_S, synchronous position, fraction of M_T")
-    decoupling: float = Field(0.0, ge=0.0, le=1.0, description="M_A, decoupling position, fraction of M_T")
-    braking: float = Field(0.0, ge=0.0, le=1.0, description="M_B, braking position, fraction of M_T")
-    standstill: float = Field(0.0, ge=-1.0, le=1.0, description="S_0, standstill position, fraction of S_T")
-    label_set_point: float = Field(0.0, ge=0.0, le=1.0, description="M_M (S_M), label set point, fraction of M_T (S_T)")
-    label_window: float = Field(0.0, ge=0.0, le=0.3, description="M_f, half width of the label window, fraction of M_T (S_T)")
-    correction_enable: float = Field(0.0, ge=0.0, le=1.0, description="M_k1, corrections from this master position, fraction of M_T")
-    correction_disable: float = Field(0.0, ge=0.0, le=1.0, description="M_k2, corrections up to this master position, fraction of M_T")
-
-    @model_validator(mode="after")
-    def _source(self) -> "CurveEntry":
-        given = [k for k in ("csv", "segments", "cam") if getattr(self, k) is not None]
-        if len(given) != 1:
-            raise ValueError(f"curve {self.number}: give exactly one of csv, segments, cam (given: {', '.join(given) or 'none'})")
-        if self.segments is not None and (self.master_period is None or self.points is None):
-            raise ValueError(f"curve {self.number}: segments need master_period and points")
-        if self.cam is not None and self.points is None:
-            raise ValueError(f"curve {self.number}: cam = {self.cam!r} needs points (the set points to sample)")
-        if self.slave_cycle == 0.0:
-            raise ValueError(f"curve {self.number}: slave_cycle = 0 cannot scale the curve")
-        return self
-
-    def block(self) -> dict[str, float]:
-        names = ("coupling", "synchronous", "decoupling", "braking", "standstill", "label_set_point",
-                 "label_window", "correction_enable", "correction_disable")
-        return {n: getattr(self, n) for n in names}
-
-
-class CompaxConfig(BaseModel):
-    """The [device] table of personality "compax"."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    slave: Name = Field(description="the machine axis COMPAX drives as its slave (job steps must not command it)")
-    master: Name = Field(
-        "internal",
-        description="master encoder: a [[master]] name (wheel, axis_encoder, ...), an axis with an [axis.encoder], or internal (time base)",
-    )
-    memory_file: FilePath = Field(
-        None, min_length=1, max_length=4096,
-        description="cam memory file (JSON, relative to the machine file): loaded at start if present, saved by persist(); none: not kept",
-    )
-    parameter_file: FilePath = Field(
-        None, min_length=1, max_length=4096,
-        description="parameter file (JSON): loaded at start if present instead of device.parameters, saved by persist()",
-    )
-    curves: list[CurveEntry] = Field(
-        default_factory=list, max_length=MAX_CURVES, description="curves for a new cam memory (ignored when memory_file exists)"
-    )
-    parameters: dict[str, int | float] = Field(
-        default_factory=dict, description="parameter values by number (P33 = 1): written, then VC and VP"
-    )
-    inputs: dict[InputName, bool | Signal] = Field(
-        default_factory=dict,
-        description="I12...I16: true/false, a switch '<axis>.<name>', a print-mark sensor or an [io] input; I12 defaults to true, the rest to false",
-    )
-    outputs: dict[OutputName, Signal] = Field(default_factory=dict, description="O1...O16 to [io] outputs")
-    startup: list[ProgramLine] = Field(
-        default_factory=list, max_length=1000,
-        description="start-up program: ASCII-interface lines (SETC 1, SETM 0, LOOP 0, P31=2, VP, ...) and WAIT ms, run in order at start",
-    )
-    label_tolerance: float = Field(
-        10.0, gt=0.0, le=500.0, description="label error (per mille of the cycle) the report counts as converged"
-    )
-    trace: bool = Field(True, description="offer the compax.* scope channels (trace.channels = all, or by name)")
-
-    @field_validator("parameters")
-    @classmethod
-    def _parameters(cls, value: dict[str, int | float]) -> dict[str, int | float]:
-        probe = Parameters()
-        problems = []
-        for key, v in value.items():
-            m = re.fullmatch(r"[Pp]?(\d+)", key.strip())
-            if m is None or int(m[1]) not in PARAMETERS:
-                problems.append(f"{key} = {v!r}: not a parameter of the device (e.g. P33)")
-                continue
-            try:
-                probe[int(m[1])] = v
-            except CompaxError as e:
-                problems.append(str(e))
-        if problems:
-            raise ValueError("; ".join(problems))
-        return value
-
-    def parameter_values(self) -> dict[int, int | float]:
-        return {int(re.fullmatch(r"[Pp]?(\d+)", k.strip())[1]): v for k, v in self.parameters.items()}  # type: ignore[index]
-
-
-# ---------------------------------------------------------------------------------------
-# helpers
-
-
-def derive_master_scaling(counts_per_unit: float, *, preferred_p98: float | None = None) -> tuple[float, int] | None:
-    """(P98, P143) so that 4·P143/P98 = counts_per_unit (the master encoder's increments per
-    master unit, §4.5): the preferred P98 (a wheel's circumference) first, then round values.
-    None when no P143 of 128 ... 2 000 000 fits exactly."""
-    c = float(counts_per_unit)
-    if not (math.isfinite(c) and c > 0):
-        return None
-    candidates: list[float] = [preferred_p98] if preferred_p98 else []
-    candidates += [1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 15, 16, 18, 20, 24, 25, 30, 32, 36, 40, 45, 48, 50, 60, 64, 72,
-                   75, 80, 90, 96, 100, 120, 125, 128, 144, 150, 160, 180, 200, 240, 250, 256, 300, 360, 400, 500,
-                   512, 600, 720, 750, 1000, 1024, 2000, 2048, 3600, 4096, 5000, 10000]
-    for p98 in candidates:
-        p143 = c * p98 / 4.0
-        r = round(p143)
-        if abs(p143 - r) <= 1e-9 * max(1.0, p143) and 128 <= r <= 2_000_000 and 0 < p98 <= 4_000_000:
-            return float(p98), int(r)
-    return None
-
-
-def save_parameters(params: Parameters, path: str | Path) -> None:
-    """The written parameter values as JSON, atomically (what a restart loads)."""
-    doc = {"format": _PARAM_FILE_FORMAT, "version": 1,
-           "written": {f"P{n}": params.written[n] for n in sorted(PARAMETERS)}}
-    atomic_write_text(path, json.dumps(doc, indent=1) + "\n")
-
-
-def load_parameters(path: str | Path) -> Parameters:
-    """A parameter file as the device has it after power on: every value written and valid."""
-    name = str(path)
-    try:  # the size is checked before the file is read: a parameter file is a few kB
-        doc = json.loads(read_text(path, 1 << 20))
-    except json.JSONDecodeError as e:
-        raise CompaxError(f"{name}: not a parameter file ({e})") from None
-    except (ValueError, RecursionError) as e:  # too large, not UTF-8, nested too deep
-        raise CompaxError(f"{name}: not a parameter file ({e})") from None
-    if not isinstance(doc, dict) or doc.get("format") != _PARAM_FILE_FORMAT or doc.get("version") != 1:
-        raise CompaxError(f"{name}: not a parameter file (format {_PARAM_FILE_FORMAT!r}, version 1)")
-    written = doc.get("written")
-    if not isinstance(written, dict):
-        raise CompaxError(f"{name}: 'written' must be a table of parameter values")
-    params = Parameters()
-    for key, value in written.items():
-        m = re.fullmatch(r"P(\d+)", str(key))
-        if m is None:
-            raise CompaxError(f"{name}: {key!r} is not a parameter number (P<n>)")
-        params[int(m[1])] = value
-    for event in ("VC", "VP", "SETC", "LOOP", "cycle_end"):  # power on: what was stored is valid
-        params.make_valid(event)
-    return params
-
-
-class LiveStatus(StatusValues):
-    """The status values read live from the cam operation; S30 is the last error of the
-    interface or of the cam operation (whichever came last)."""
-
-    def __init__(self, op: CamOperation) -> None:
-        super().__init__()
-        self.op = op
-
-    def __getitem__(self, number: int) -> float:
-        stored = super().__getitem__(number)  # checks the number
-        return stored if number == 30 else float(self.op.status(number))
-
-    def read(self, number: int, parameters: Any = None) -> float:
-        return self[number]
-
-
-class CompaxEndpoint(AsciiEndpoint):
-    """The ASCII interface with the operator's write enable (see the module docstring)."""
-
-    def __init__(self, memory: CamMemory, parameters: Parameters, commands: Any, status: StatusValues,
-                 writes_allowed: Callable[[], bool],
-                 store: Callable[[CamMemory, Parameters], None] | None = None) -> None:
-        super().__init__(memory, parameters, commands, status)
-        self._writes_allowed = writes_allowed
-        #: saves what a line changed (given the state before it); None: nothing is kept
-        self._store = store
-
-    def _dispatch(self, text: str) -> str:
-        line = "".join(text.split()).upper()
-        match = _STATUS_READ.fullmatch(line)
-        if match:
-            number = int(match[1])
-            return f"S{number:03d}={format_status(self.status.read(number, self.parameters))}"
-        if not self._writes_allowed():
-            if _DATA_WRITE.fullmatch(line):
-                # short enough that the hint survives the error reply's length limit
-                raise CompaxError(f"{line!r} refused: network writes are off (serve --allow-writes)",
-                                  code=E_RESERVED, field="line", value=text)
-            if _COMMAND.fullmatch(line):
-                raise CompaxError(f"{line!r} refused: network commands are off (serve --allow-writes)",
-                                  code=E_NOT_AVAILABLE, field="line", value=text)
-        if self._store is None or not _STORING.fullmatch(line):
-            return super()._dispatch(text)
-        memory, params = self.memory.copy(), self.parameters.snapshot()
-        body = super()._dispatch(text)
-        try:
-            self._store(memory, params)
-        except OSError as e:
-            # the host must not take an unsaved change for a stored one: undo it, say why
-            self.memory.restore(memory)
-            self.parameters.restore(params)
-            raise CompaxError(f"{line!r} not stored ({e.strerror or e}); nothing changed", code=E_STORE,
-                              field="line", value=text) from None
-        return body
+_MOTION = re.compile(r"LOOP|LP|POSRCAM|PR|POSA|POSR")
 
 
 # ---------------------------------------------------------------------------------------
@@ -430,6 +176,7 @@ class CompaxPersonality(Personality):
             problems.append(f"device.parameter_file = {config.parameter_file!r}: the same file as device.memory_file "
                             "(each save would overwrite the other)")
         self.memory = self._memory(config, problems)
+        self.program_memory = self._program(config, problems)
         self.params = self._parameters(config, counts_per_unit, preferred_p98, problems)
         if problems:
             raise ConfigError(self.source, problems)
@@ -445,7 +192,10 @@ class CompaxPersonality(Personality):
         self.wiring = wiring
         self.op = CamOperation(self.axis, self.params, self.memory, encoder=self.encoder, inputs=wiring, label=self.label)
         self.status = LiveStatus(self.op)
-        self._local = CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: True)
+        self.run = ProgramRun(self.program_memory, self.op, self.params, on_error=self._program_error)
+        self._programs = ProgramInterface(self.program_memory, self.run)
+        self._local = CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: True,
+                                     program=self._programs)
         self._i14 = self._sensor(config.inputs.get("I14"))
         self._i16 = self._sensor(config.inputs.get("I16"))
         self._edge_seen: dict[str, float] = {}
@@ -515,6 +265,27 @@ class CompaxPersonality(Personality):
                 problems.append(f"device.curves[{i}] (curve {entry.number}): {e}")
         memory.vf()
         return memory
+
+    def _program(self, config: CompaxConfig, problems: list[str]) -> ProgramMemory:
+        """The program memory: the sets kept in the memory file (power on), else program_file
+        (endpoint.py decision 3)."""
+        program = ProgramMemory()
+        lines, source = None, ""
+        path = self.memory_path
+        try:
+            if path is not None and path.exists() and not path.is_dir():
+                source = f"device.memory_file = {config.memory_file!r}"
+                lines = stored_program(path)
+            if lines is None and config.program_file is not None:
+                source = f"device.program_file = {config.program_file!r}"
+                lines = read_program_file(self._path(config.program_file))
+            if lines is not None:
+                program.replace(lines, source=source)
+        except CompaxError as e:
+            problems.append(str(e) if str(e).startswith(source) else f"{source}: {e}")
+        except (OSError, ValueError) as e:
+            problems.append(f"{source}: {e}")
+        return program
 
     def _curve(self, entry: CurveEntry) -> CurveRecord:
         from axisline.motion.cam import PointTable
@@ -623,6 +394,7 @@ class CompaxPersonality(Personality):
             self._first = False
             self.log.start(t)
         self._run_program(cycle)
+        self.run.tick(cycle)  # the program memory's interpreter, before the cam operation
         fresh: dict[str, list[Any]] = {}
         for sensor in (self._i14, self._i16):
             if sensor is not None and sensor.name not in fresh:  # I14 and I16 may be one sensor
@@ -643,6 +415,7 @@ class CompaxPersonality(Personality):
                     latch = self._enc_prev + round(rising.fraction * moved)
         self._enc_prev = raw
         op.tick(cycle, i14_edges=i14_edges, i16_latch=latch)
+        self.run.watch(cycle)
         # records of the cycle
         log = self.log
         label = self.label
@@ -716,16 +489,30 @@ class CompaxPersonality(Personality):
         """The ASCII interface (memory, parameters and status are this device's; each
         connection takes its own line buffer with `.session()`). Writes need `network_writes`."""
         return CompaxEndpoint(self.memory, self.params, self.op, self.status, lambda: self.network_writes,
-                              store=self._store_line)
+                              store=self._store_line, program=self._programs)
 
-    def _store_line(self, memory_before: CamMemory, params_before: Parameters) -> None:
+    def _program_error(self, record: dict[str, Any]) -> None:
+        """A program set answered with an error: S30, and a fault of the run (programrun decision 5)."""
+        self.status[30] = record["code"]
+        where = f"program set {record['text']!r}" if record["text"] else "program"
+        self.machine.faults.append(f"t={record['t']:.4f} s device: {where}: !E{record['code']} {record['message']}")
+
+    def _store_line(self, memory_before: CamMemory, params_before: Parameters,
+                    program_before: ProgramMemory | None = None) -> None:
         """Save what one interface line changed, before its reply (see the module docstring)."""
-        if self.memory_path is not None and self.memory.words() != memory_before.words():
+        program_changed = program_before is not None and program_before != self.program_memory
+        if self.memory_path is not None and (self.memory.words() != memory_before.words() or program_changed):
             self.memory_path.parent.mkdir(parents=True, exist_ok=True)
-            self.memory.save(self.memory_path)
+            save_store(self.memory_path, self.memory, self.program_memory)
         if self.parameter_path is not None and dict(self.params.written) != dict(params_before.written):
             self.parameter_path.parent.mkdir(parents=True, exist_ok=True)
             save_parameters(self.params, self.parameter_path)
+
+    def stop(self) -> bool:
+        """Shutdown: the start-up list and the program stop, the slave brakes on its ramp (STOP)."""
+        self.pc = len(self.program)
+        self.run.stop()
+        return True
 
     def store_paths(self) -> list[Path]:
         return [p for p in (self.memory_path, self.parameter_path) if p is not None]
@@ -735,7 +522,7 @@ class CompaxPersonality(Personality):
         files = []
         if self.memory_path is not None:
             self.memory_path.parent.mkdir(parents=True, exist_ok=True)
-            self.memory.save(self.memory_path)
+            save_store(self.memory_path, self.memory, self.program_memory)
             files.append(self.memory_path)
         if self.parameter_path is not None:
             self.parameter_path.parent.mkdir(parents=True, exist_ok=True)
@@ -775,6 +562,7 @@ class CompaxPersonality(Personality):
                 "done": self.pc >= len(self.program) and not self.program_errors,
                 "errors": list(self.program_errors),
             },
+            "program_memory": self.run.summary(),  # the sets N001 ... and their interpreter
             "label": {
                 "mode": {0: "off", 1: "master related", 2: "slave related"}.get(self.label.mode, str(self.label.mode)),
                 "cycles_with_label": len(labelled),
@@ -791,7 +579,10 @@ class CompaxPersonality(Personality):
 
     def report_markdown(self, device_summary: dict[str, Any], plots: list[Path]) -> str:
         label = device_summary.get("label", {})
-        lines = ["## COMPAX label synchronisation", "",
+        program = self.run.report_lines()
+        if program and label.get("mode") == "off" and not label.get("cycles_with_label"):
+            return "\n".join(program) + "\n"  # a program without labels: no label section
+        lines = program + ["## COMPAX label synchronisation", "",
                  f"- label synchronisation: {label.get('mode')}, {label.get('cycles_with_label')} master cycles with a label",
                  f"- converged (|error| <= {label.get('tolerance_per_mille')} ‰) from master cycle {label.get('converged_from_cycle')}",
                  f"- last label error: {_per_mille(label.get('last_error_per_mille'))} ‰", "",
