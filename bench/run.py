@@ -12,6 +12,8 @@
   seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time);
   and the cut accuracy of the three FS701 examples (issue 4's quality bars: deterministic
   figures in carriage increments, no timing);
+- serve: cycle lateness of `axisline serve` at 1 ms, idle and with 50 clients on each endpoint,
+  beside a bare Python loop sleeping to the same deadlines in the same run;
 - clm: every CLM example (examples/*_clm.toml: programs, Logic Task, axis functions, plant) at
   its 2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
 
@@ -31,6 +33,7 @@ from bench_cycle import bench_cycle  # noqa: E402
 from bench_compax import bench_compax  # noqa: E402
 from bench_fs701 import bench_fs701, cut_accuracy  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
+from bench_serve import bench_serve  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
 
@@ -50,6 +53,8 @@ def main() -> None:
     bench_compax()
     print()
     bench_clm()
+    print()
+    bench_serve()
 
 
 if __name__ == "__main__":

@@ -62,11 +62,23 @@ class CycleSide:
         self._lateness = machine.clock.lateness
         self._last_samples = 0
         self._worst_since = 0.0
+        self._previous_deadline: float | None = None
+        self.longest_work_s = 0.0  # the longest cycle (its stages), for the stop event
+        self.longest_pump_s = 0.0  # the longest time spent answering requests between two cycles
 
     def idle(self, deadline: float) -> None:
+        start = self.timer()
+        previous = self._previous_deadline
+        if previous is not None:
+            work = start - previous - self._lateness.last
+            if work > self.longest_work_s:
+                self.longest_work_s = work
+        self._previous_deadline = deadline
         self._check_overrun()
         self.link.pump(deadline - self.margin, self.timer)
         now = self.timer()
+        if now - start > self.longest_pump_s:
+            self.longest_pump_s = now - start
         if now >= self._next_fault_look:
             self._next_fault_look = now + _FAULT_LOOK_S
             self.look_for_faults()

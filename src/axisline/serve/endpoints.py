@@ -59,11 +59,11 @@ def _console(line: str) -> None:
         pass
 
 
-def endpoint_main(conn: Any, spec: EndpointSpec, parent_end: Any = None) -> None:
-    if parent_end is not None:
-        # the fork copied the cycle process's end of the pipe too: closed here, so that the
+def endpoint_main(replies: Any, requests: Any, spec: EndpointSpec, parent_ends: tuple = ()) -> None:
+    for end in parent_ends:
+        # the fork copied the cycle process's ends of the pipes too: closed here, so that the
         # cycle process's death (kill -9) is an end-of-file on the link and this process ends
-        parent_end.close()
+        end.close()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
     try:
@@ -78,9 +78,9 @@ def endpoint_main(conn: Any, spec: EndpointSpec, parent_end: Any = None) -> None
     try:
         log = EventLog(console=_console, json_path=spec.log_path)
     except OSError as e:
-        conn.send(("failed", f"--log {spec.log_path}: cannot open it: {e.strerror or e}"))
+        requests.send(("failed", f"--log {spec.log_path}: cannot open it: {e.strerror or e}"))
         return
-    link = EndpointLink(conn, on_event=lambda kind, message, fields: log.emit(kind, message, **fields))
+    link = EndpointLink(replies, requests, on_event=lambda kind, message, fields: log.emit(kind, message, **fields))
     link.start()  # before the servers: the pty bridge opens its session as it is made
     servers: list[Any] = []
     try:

@@ -18,16 +18,18 @@ Messages (tuples, pickled by multiprocessing.Connection):
                         ("event", kind, message, fields)
                         ("shutdown",)
 
+Two one-way pipes: requests (endpoint -> cycle) and replies and events (cycle -> endpoint). The
+cycle process reads with poll(0) and writes without blocking (`_Outbox`), so a slow endpoint
+process never blocks a cycle, and it has no thread of its own.
 Targets are the device's endpoints by role ("byte", "register") and the HMI's view ("hmi");
-sessions get handles "s1", "s2", ... A reply is pickled by the sender thread of the cycle
-process, so a slow endpoint process never blocks a cycle. A request once sent is not
+sessions get handles "s1", "s2", ... A request once sent is not
 withdrawn (a cancelled Future would say "not done" of a write the cycle may already have
 applied): it is answered, or failed with `LinkClosed` when the cycle process goes away.
 
 Decisions (issue 17 point -> choice, why):
 
 1. "the cycle runs in a process of its own and talks to the endpoint/HMI process through a
-   shared-memory image published once per cycle and a command queue" -> one pipe, and every
+   shared-memory image published once per cycle and a command queue" -> a pipe each way, and every
    request (reads included) is answered by the cycle process in its idle time; no image is
    published. Why: the answers of the serial protocols (COMPAX, CLM, FS701 Drivecom) and of the
    HMI's device views are computed by the device code, not read from a register image; a
@@ -46,8 +48,9 @@ Decisions (issue 17 point -> choice, why):
 from __future__ import annotations
 
 import itertools
+import os
 import pickle
-import queue
+import struct
 import threading
 import time
 from concurrent.futures import Future
@@ -56,6 +59,8 @@ from typing import Any, Callable
 from ..fieldbus.clients import current_client
 from ..kernel import requests
 from .audit import Audit
+
+_LENGTH = struct.Struct("!i")  # multiprocessing.Connection's message header
 
 __all__ = ["CycleLink", "EndpointLink", "LinkClosed", "RemoteCommands", "RemoteEndpoint", "RemoteError"]
 
@@ -79,21 +84,76 @@ def _portable(exc: BaseException) -> BaseException:
 # ---------------------------------------------------------------------------- cycle side
 
 
+class _Outbox:
+    """Messages to the endpoint process, written without ever blocking the cycle.
+
+    The pipe's write end is non-blocking: what the pipe does not take now (the endpoint
+    process is busy) stays here and is written at the next pump. The framing is
+    multiprocessing.Connection's (a 4-byte big-endian length, then the pickle), so the
+    endpoint process reads it with `Connection.recv`. No thread: a sender thread in the cycle
+    process would compete with the cycle for the interpreter, which is what serve's two
+    processes exist to avoid."""
+
+    def __init__(self, conn: Any) -> None:
+        self._conn = conn  # kept: closing it closes the descriptor
+        self._fd = conn.fileno()
+        os.set_blocking(self._fd, False)
+        self._pending = bytearray()
+        self.closed = False
+
+    def put(self, message: tuple) -> None:
+        try:
+            data = pickle.dumps(message, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception as exc:  # an unpicklable reply value: answer with its text
+            if message[0] != "reply":
+                return
+            data = pickle.dumps(("reply", message[1], False, RemoteError(f"unsendable reply: {exc}")))
+        self._pending += _LENGTH.pack(len(data)) + data
+        self.flush()
+
+    def flush(self) -> None:
+        pending = self._pending
+        while pending and not self.closed:
+            try:
+                n = os.write(self._fd, pending)
+            except BlockingIOError:
+                return
+            except OSError:  # the endpoint process is gone
+                self.closed = True
+                pending.clear()
+                return
+            del pending[:n]
+
+    @property
+    def waiting(self) -> int:
+        """Bytes not yet taken by the pipe."""
+        return len(self._pending)
+
+    def close(self, timeout: float = 5.0) -> None:
+        end = time.monotonic() + timeout
+        while self._pending and not self.closed and time.monotonic() < end:
+            self.flush()
+            time.sleep(0.001)
+        self._conn.close()
+
+
 class CycleLink:
     """The cycle process's end: answers requests at cycle boundaries, sends events."""
 
-    def __init__(self, conn: Any, targets: dict[str, Callable[[], Any]], audit: Audit | None = None) -> None:
-        self._conn = conn
+    def __init__(self, inbox: Any, outbox: Any, targets: dict[str, Callable[[], Any]], audit: Audit | None = None) -> None:
+        self._conn = inbox
+        self._out = _Outbox(outbox)
         self._factories = targets  # role -> factory, made on first use (a device may offer none)
         self._objects: dict[str, Any] = {}
         self._handles = itertools.count(1)
         self.audit = audit
-        self._out: queue.SimpleQueue[Any] = queue.SimpleQueue()
-        self._sender = threading.Thread(target=self._send_loop, name="link-send", daemon=True)
-        self._sender.start()
-        self.closed = False
         self.answered = 0
+        self.slowest: tuple[float, str] = (0.0, "")  # the longest request answered: seconds, what
         self.endpoint_messages: list[tuple] = []  # listening/started/failed, read by serve
+
+    @property
+    def closed(self) -> bool:
+        return self._out.closed
 
     # -- sending (never blocks the cycle) ------------------------------------------------
 
@@ -103,30 +163,23 @@ class CycleLink:
     def emit(self, kind: str, message: str, **fields: Any) -> None:
         self._out.put(("event", kind, message, fields))
 
-    def _send_loop(self) -> None:
-        while True:
-            message = self._out.get()
-            if message is None:
-                return
-            try:
-                self._conn.send(message)
-            except (OSError, EOFError, ValueError):
-                self.closed = True
-                return
-            except Exception as exc:  # an unpicklable reply value: answer with its text
-                if message[0] == "reply":
-                    try:
-                        self._conn.send(("reply", message[1], False, RemoteError(f"unsendable reply: {exc}")))
-                    except (OSError, EOFError, ValueError):
-                        self.closed = True
-                        return
-
     def close(self) -> None:
         self._out.put(("shutdown",))
-        self._out.put(None)
-        self._sender.join(5.0)
+        self._out.close()
 
     # -- receiving ------------------------------------------------------------------------
+
+    def prepare(self) -> list[str]:
+        """Make every target now, before the cycles run: making one (a device's endpoint, the
+        HMI's view: imports, tables) can take milliseconds, which inside the first request's
+        idle time would make a cycle late. Returns the problems (a target that failed)."""
+        problems = []
+        for name in list(self._factories):
+            try:
+                self._target(name)
+            except Exception as exc:
+                problems.append(f"{name}: {type(exc).__name__}: {exc}")
+        return problems
 
     def _target(self, name: str) -> Any:
         obj = self._objects.get(name)
@@ -141,17 +194,22 @@ class CycleLink:
         """Answer requests until ``until`` (timer seconds) or none is waiting; at least one
         waiting request is answered even when the cycle has no idle time left, so clients
         are slowed down by a busy cycle but never starved. Returns how many were handled."""
+        self._out.flush()
         conn = self._conn
         handled = 0
         try:
             while conn.poll(0):
+                t0 = timer()
                 message = conn.recv()
                 self._handle(message)
                 handled += 1
-                if timer() >= until:
+                t1 = timer()
+                if t1 - t0 > self.slowest[0]:
+                    self.slowest = (t1 - t0, f"{message[0]} {message[2] if message[0] == 'call' else ''} {message[3] if message[0] == 'call' else ''}".strip())
+                if t1 >= until:
                     break
         except (EOFError, OSError):
-            self.closed = True
+            self._out.closed = True
         return handled
 
     def _handle(self, message: tuple) -> None:
@@ -205,8 +263,9 @@ class CycleLink:
 class EndpointLink:
     """The endpoint process's end: sends requests, resolves their Futures, logs events."""
 
-    def __init__(self, conn: Any, on_event: Callable[[str, str, dict[str, Any]], None]) -> None:
-        self._conn = conn
+    def __init__(self, inbox: Any, outbox: Any, on_event: Callable[[str, str, dict[str, Any]], None]) -> None:
+        self._conn = inbox
+        self._outbox = outbox
         self._on_event = on_event
         self._ids = itertools.count(1)
         self._waiting: dict[int, Future[Any]] = {}
@@ -221,7 +280,7 @@ class EndpointLink:
 
     def send(self, message: tuple) -> None:
         with self._send_lock:
-            self._conn.send(message)
+            self._outbox.send(message)
 
     def _request(self, message_of: Callable[[int], tuple]) -> Future[Any]:
         future: Future[Any] = Future()

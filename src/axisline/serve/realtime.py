@@ -74,11 +74,12 @@ def endpoint_cpus(realtime: Any) -> set[int] | None:
 class IdleCollector:
     """Garbage collection in the idle time before a deadline (gc = "idle")."""
 
-    __slots__ = ("enabled", "collections")
+    __slots__ = ("enabled", "collections", "longest_s")
 
     def __init__(self, enabled: bool) -> None:
         self.enabled = enabled
         self.collections = 0
+        self.longest_s = 0.0  # the longest collection, for the stop event
 
     def __call__(self, deadline: float, timer: Any = time.perf_counter) -> None:
         if not self.enabled:
@@ -86,7 +87,8 @@ class IdleCollector:
         pending, gen1, gen2 = gc.get_count()
         if pending < _GEN0_PENDING:
             return
-        left = deadline - timer()
+        start = timer()
+        left = deadline - start
         if gen2 >= 10 and left > _OLDER_IDLE_S:
             gc.collect(2)
         elif gen1 >= 10 and left > _OLDER_IDLE_S:
@@ -96,3 +98,6 @@ class IdleCollector:
         else:
             return
         self.collections += 1
+        took = timer() - start
+        if took > self.longest_s:
+            self.longest_s = took

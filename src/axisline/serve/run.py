@@ -77,10 +77,13 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
         cpus=endpoint_cpus(realtime),
     )
     ctx = multiprocessing.get_context("fork")  # before any thread of this process exists
-    here, there = ctx.Pipe(duplex=True)
-    child = ctx.Process(target=endpoint_main, args=(there, spec, here), name="axisline-endpoints", daemon=True)
+    requests_in, requests_out = ctx.Pipe(duplex=False)  # endpoint -> cycle
+    replies_in, replies_out = ctx.Pipe(duplex=False)  # cycle -> endpoint
+    child = ctx.Process(target=endpoint_main, args=(replies_in, requests_out, spec, (requests_in, replies_out)),
+                        name="axisline-endpoints", daemon=True)
     child.start()
-    there.close()
+    requests_out.close()
+    replies_in.close()
 
     targets: dict[str, Callable[[], Any]] = {}
     if device is not None:
@@ -89,6 +92,8 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
             targets["byte"] = device.byte_endpoint
         if "modbus" in offered:
             targets["register"] = device.register_endpoint
+            # the endpoints' refusals import it on first use: 20 ms (pymodbus) in a cycle's idle time
+            import axisline.fieldbus.modbus  # noqa: F401
     link: CycleLink
 
     def view() -> Any:
@@ -99,8 +104,10 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
     targets["hmi"] = view
     from .audit import Audit
 
-    link = CycleLink(here, targets)
+    link = CycleLink(requests_in, replies_out, targets)
     link.audit = Audit(device, link.emit)
+    for problem in link.prepare():
+        say(f"endpoint not available: {problem}")
     try:
         where = _wait_for_endpoints(link, child)
     except ServeError:
@@ -161,7 +168,10 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
             f"p99.9 {lateness['p99_9_us']:.0f} us, max {lateness['max_us']:.0f} us")
     link.emit("stop", f"stopped after {n} cycles; axes {'at rest' if rested else 'NOT at rest'}; "
               f"{side.overruns} overrun(s); {late}", cycles=n, at_rest=rested, saved=[str(p) for p in saved],
-              overruns=side.overruns, lateness=lateness, gc_collections=side.collect.collections)
+              overruns=side.overruns, lateness=lateness, gc_collections=side.collect.collections,
+              gc_longest_ms=round(side.collect.longest_s * 1e3, 3), requests=link.answered,
+              longest_cycle_ms=round(side.longest_work_s * 1e3, 3), longest_requests_ms=round(side.longest_pump_s * 1e3, 3),
+              slowest_request=f"{link.slowest[1]} ({link.slowest[0] * 1e3:.3f} ms)")
     link.close()
     child.join(5.0)
     if child.is_alive():
