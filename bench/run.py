@@ -14,6 +14,8 @@
   figures in carriage increments, no timing);
 - serve: cycle lateness of `axisline serve` at 1 ms, idle and with 50 clients on each endpoint,
   beside a bare Python loop sleeping to the same deadlines in the same run;
+- sweep: a 40-case FS701 sweep in this process and on a Dask LocalCluster of 1 and 2 workers
+  (cases/s), the checks before the run, the cluster start and the scheduling overhead per case;
 - clm: every CLM example (examples/*_clm.toml: programs, Logic Task, axis functions, plant) at
   its 2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
 
@@ -36,6 +38,8 @@ from bench_profiles import bench_profiles  # noqa: E402
 from bench_serve import bench_serve  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
+from axisline.sweep.bench import bench_sweep  # noqa: E402
+
 
 def main() -> None:
     random.seed(7)
@@ -55,6 +59,8 @@ def main() -> None:
     bench_clm()
     print()
     bench_serve()
+    print()
+    bench_sweep()
 
 
 if __name__ == "__main__":

@@ -509,6 +509,11 @@ def _remove_stale_temporaries(paths: list[Path]) -> None:
             console.print(f"removed {tmp} (a save interrupted before its rename; {path} is whole)", markup=False)
 
 
+from .sweep.cli import sweep as _sweep  # noqa: E402  (docs/sweep.md; dask is imported only when a sweep runs)
+
+app.command("sweep")(_sweep)
+
+
 def main() -> None:  # pragma: no cover
     app()
 
