@@ -21,7 +21,7 @@ from axisline.devices.fs701.registers import decode_words
 from axisline.devices.wago672.coupler import OUTPUT_READBACK, unpack
 from axisline.devices.wago672.image import InputImage
 from axisline.devices.wago672.mailbox import MbxOpcode
-from axisline.hmi.devices import device_acknowledge, device_view, device_write
+from axisline.hmi.devices import device_acknowledge, device_faults, device_view, device_write
 from axisline.machine import Machine
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -118,10 +118,12 @@ def test_fs701_acknowledge_clears_error_02(shear):
     active = [r for r in _sections(view, "diagnostics")[0]["rows"] if r["active"]]
     assert [r["code"] for r in active] == ["02"]
     assert _modbus_value(d, 0x0B05) == 1 << 2
+    assert list(device_faults(d)) == ["FS701 error 02"]  # serve's event log sees the same
     device_write(d, "cutting_length", 1000)
     assert "Error 02" in device_acknowledge(d)
     shear.scheduler.run(2)
     assert _modbus_value(d, 0x0B05) == 0
+    assert device_faults(d) == {}
     assert d.registers.status.serial_commands == 0  # the Clear Error pulse is released
     cuts = len(d.meter.records)
     shear.scheduler.run(3000)
@@ -199,7 +201,9 @@ def test_compax_acknowledge_is_quit(cam):
     assert _ascii(d, "S30") == "S030=17.000"
     active = [r["code"] for r in _sections(_view(cam), "diagnostics")[0]["rows"] if r["active"]]
     assert "E17" in active
+    assert device_faults(d) == {"COMPAX E17": "Curve not present"}
     assert "E17 Curve not present" in device_acknowledge(d)
+    assert device_faults(d) == {}
     assert _ascii(d, "S30") == "S030=0.000"
     active = [r["code"] for r in _sections(_view(cam), "diagnostics")[0]["rows"] if r["active"] and r["code"].startswith("E")]
     assert active == []
@@ -266,8 +270,10 @@ def test_wago_acknowledge_quits_the_error(stepper):
     stepper.scheduler.run(2)
     diag = _sections(_view(stepper), "diagnostics")[0]["rows"]
     assert diag[0]["code"] == 1161 and diag[0]["active"]
+    assert list(device_faults(d)) == ["750-672 module 0 error"] and "1161" in device_faults(d)["750-672 module 0 error"]
     assert "1161" in device_acknowledge(d)
     stepper.scheduler.run(2)
+    assert device_faults(d) == {}
     assert d.device(0).errors.error == 0
     assert not _sections(_view(stepper), "diagnostics")[0]["rows"][0]["active"]
 
@@ -364,12 +370,14 @@ def test_clm_acknowledge_is_the_cl_key(clm):
     clm.scheduler.run(2)
     rows = _sections(_view(clm), "diagnostics")[0]["rows"]
     assert rows[0]["code"] == "03" and rows[0]["active"]
+    assert list(device_faults(d)) == ["CLM error 03"]
     assert "not cleared" in device_acknowledge(d)  # the cause is still there (modes.py: clear only when it is gone)
     assert d.rt.modes.fault_error is not None
     clm.io.set_input("estop", True)
     clm.scheduler.run(2)
     assert "03" in device_acknowledge(d)
     assert d.rt.modes.fault_error is None
+    assert device_faults(d) == {}
     assert _sections(_view(clm), "text")[2]["lines"][:2] == ["Error 00", "no error"]
 
 

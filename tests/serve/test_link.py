@@ -66,11 +66,12 @@ class Device:
 
 @pytest.fixture
 def link():
-    here, there = multiprocessing.Pipe(duplex=True)
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
     regs, device, events = Registers(), Device(), []
-    cycle = CycleLink(here, {"register": lambda: regs, "byte": lambda: device.session.__self__})
+    cycle = CycleLink(req_in, rep_out, {"register": lambda: regs, "byte": lambda: device.session.__self__})
     cycle.audit = Audit(device, cycle.emit, image=lambda: dict(device.params))
-    endpoint = EndpointLink(there, on_event=lambda kind, message, fields: events.append((kind, message, fields))).start()
+    endpoint = EndpointLink(rep_in, req_out, on_event=lambda kind, message, fields: events.append((kind, message, fields))).start()
     stop = threading.Event()
 
     def pump() -> None:  # the cycle process's idle time, every millisecond
@@ -157,10 +158,12 @@ def test_an_unpicklable_answer_becomes_a_remote_error_not_a_hang(link):
 
 
 def test_requests_fail_with_link_closed_when_the_cycle_process_goes_away():
-    here, there = multiprocessing.Pipe(duplex=True)
-    endpoint = EndpointLink(there, on_event=lambda *a: None).start()
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
+    endpoint = EndpointLink(rep_in, req_out, on_event=lambda *a: None).start()
     fut = endpoint.call("register", "read_registers", ("holding", 0, 1))
-    here.close()  # the cycle process died (kill -9) before answering
+    rep_out.close()  # the cycle process died (kill -9) before answering
+    req_in.close()
     with pytest.raises(LinkClosed):
         fut.result(5)
     with pytest.raises(LinkClosed):
@@ -168,12 +171,37 @@ def test_requests_fail_with_link_closed_when_the_cycle_process_goes_away():
 
 
 def test_the_pump_answers_one_waiting_request_even_without_idle_time():
-    here, there = multiprocessing.Pipe(duplex=True)
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
     regs = Registers()
-    cycle = CycleLink(here, {"register": lambda: regs})
+    cycle = CycleLink(req_in, rep_out, {"register": lambda: regs})
     for i in range(3):
-        there.send(("call", i, "register", "read_registers", ("holding", 0, 1), "t", "modbus"))
+        req_out.send(("call", i, "register", "read_registers", ("holding", 0, 1), "t", "modbus"))
     time.sleep(0.05)
     assert cycle.pump(until=0.0) == 1  # the deadline has passed: one, not all three
     assert cycle.pump(until=time.perf_counter() + 1.0) == 2
     cycle.close()
+
+
+def test_replies_the_pipe_cannot_take_now_wait_in_the_outbox_and_the_cycle_never_blocks():
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
+    cycle = CycleLink(req_in, rep_out, {})
+    big = "x" * 100_000
+    emitting = threading.Thread(target=lambda: [cycle.emit("note", big, i=i) for i in range(50)])
+    emitting.start()  # 5 MB: far more than a pipe holds; nobody reads yet
+    emitting.join(60)
+    assert not emitting.is_alive()  # it returned without a reader: a blocking write never would
+    assert cycle._out.waiting > 0
+    got = []
+
+    def read() -> None:
+        while len(got) < 50:
+            got.append(rep_in.recv())
+
+    reader = threading.Thread(target=read)
+    reader.start()
+    while reader.is_alive():
+        cycle.pump(time.perf_counter())  # each pump writes what the pipe takes
+        time.sleep(0.001)
+    assert [m[3]["i"] for m in got] == list(range(50)) and got[0][0] == "event"

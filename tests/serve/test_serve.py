@@ -186,3 +186,46 @@ def test_the_endpoint_process_ends_when_the_cycle_process_is_killed():
     proc.wait(10)
     child.wait(10)  # it read end-of-file on the link and ended
     assert not child.is_running() or child.status() == psutil.STATUS_ZOMBIE
+
+
+def test_a_device_watchdog_trip_is_a_watchdog_event(tmp_path):
+    log = tmp_path / "events.jsonl"
+    proc, eps = start(str(ROOT / "examples" / "wago_stepper.toml"), "--modbus", "127.0.0.1:0", "--allow-writes", "--log", str(log))
+    try:
+        c = ModbusTcpClient("127.0.0.1", port=int(eps["modbus"].rsplit(":", 1)[1]), timeout=5)
+        assert c.connect()
+        assert not c.write_registers(0, [0, 0, 0, 0, 0, 0x0300]).isError()  # one write, then silence
+        deadline = time.monotonic() + 10
+        while not any(e["kind"] == "watchdog" for e in events(log)):
+            assert time.monotonic() < deadline, events(log)
+            time.sleep(0.1)
+        c.close()
+    finally:
+        stop(proc)
+    trip = next(e for e in events(log) if e["kind"] == "watchdog")
+    assert "fieldbus watchdog expired (1 time" in trip["text"]
+    write = next(e for e in events(log) if e["kind"] == "write")
+    assert write["accepted"] is True and write["what"] == "registers 0..5"
+
+
+def test_a_serial_protocol_write_is_logged_with_the_parameter_old_and_new(tmp_path):
+    import socket
+
+    from axisline.devices.fs701.drivecom import ACK, NAK, build_write
+
+    log = tmp_path / "events.jsonl"
+    proc, eps = start(str(FS701), "--serial-tcp", "127.0.0.1:0", "--allow-writes", "--log", str(log))
+    try:
+        host, port = eps["serial-tcp"].rsplit(":", 1)
+        with socket.create_connection((host, int(port)), timeout=5) as s:
+            s.sendall(build_write(11, CUTTING_LENGTH, 900))
+            assert s.recv(64) == bytes([ACK])
+            s.sendall(build_write(11, CUTTING_LENGTH, 0))  # below the range: the device's NAK
+            assert s.recv(64) == bytes([NAK])
+        time.sleep(0.3)
+    finally:
+        stop(proc)
+    ok, refused = [e for e in events(log) if e["kind"] == "write"]
+    assert ok["accepted"] is True and ok["who"].startswith("serial-tcp 127.0.0.1:")
+    assert {"what": "cutting_length", "old": 1000, "new": 900} in ok["changes"]
+    assert refused["accepted"] is False and "no stored value changed" in refused["reason"]

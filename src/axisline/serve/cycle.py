@@ -59,6 +59,7 @@ class CycleSide:
         self._stopped_for_overrun = False
         self._next_fault_look = 0.0
         self._faults: dict[str, str] = {}
+        self._device_faults = _device_faults(machine.device)
         self._lateness = machine.clock.lateness
         self._last_samples = 0
         self._worst_since = 0.0
@@ -131,11 +132,9 @@ class CycleSide:
             if axis.error_id:
                 faults[f"axis {name}"] = f"error {axis.error_id:#x}: {axis.error_text}"
         device = self.machine.device
-        active = getattr(device, "active_faults", None)
-        if callable(active):
+        if device is not None and self._device_faults is not None:
             try:
-                for source, text in active().items():
-                    faults[str(source)] = str(text)
+                faults.update(self._device_faults(device))
             except Exception as e:  # a device view must not stop the cycle
                 faults["device"] = f"its fault list failed: {type(e).__name__}: {e}"
         return faults
@@ -148,8 +147,17 @@ class CycleSide:
         cycle = self.machine.clock.cycle
         for source, text in now.items():
             if before.get(source) != text:
-                self.link.emit("fault", f"{source}: {text}", source=source, text=text, cycle=cycle)
+                kind = "watchdog" if source.startswith("watchdog") else "fault"
+                self.link.emit(kind, f"{source}: {text}", source=source, text=text, cycle=cycle)
         for source, text in before.items():
             if source not in now:
                 self.link.emit("cleared", f"{source}: cleared ({text})", source=source, text=text, cycle=cycle)
         self._faults = now
+
+
+def _device_faults(device: Any) -> Callable[[Any], dict[str, str]] | None:
+    if device is None:
+        return None
+    from ..hmi.devices import MODULES, device_faults
+
+    return device_faults if getattr(device, "name", None) in MODULES else None

@@ -29,7 +29,7 @@ from typing import Any
 
 from ._sections import clean
 
-__all__ = ["device_view", "device_write", "device_acknowledge", "MODULES"]
+__all__ = ["device_view", "device_write", "device_acknowledge", "device_faults", "MODULES"]
 
 #: personality name -> module of this package
 MODULES = {"fs701": "fs701", "compax": "compax", "wago672": "wago672", "clm": "clm"}
@@ -63,3 +63,9 @@ def device_acknowledge(personality: Any) -> str:
     """The device's own fault reset (what its panel's clear does); what it acknowledged,
     "" when nothing was active."""
     return str(_module(personality).acknowledge(personality))
+
+
+def device_faults(personality: Any) -> dict[str, str]:
+    """The device's active faults, source -> text (cheap: `serve` compares them every 10 ms and
+    logs a fault when one appears and "cleared" when it goes)."""
+    return {str(k): str(v) for k, v in _module(personality).faults(personality).items()}

@@ -350,3 +350,14 @@ def acknowledge(device: Any) -> str:
     if modes.fault_error is not None:
         return f"CLM CL key: fault {fault.code} {fault.text} not cleared (its cause is still there)"
     return f"CLM CL key: fault {fault.code} {fault.text}"
+
+
+def faults(device: Any) -> dict[str, str]:
+    """The CLM's fault (its display's error) and a memory file it could not write, for the event log."""
+    fault = device.rt.modes.fault_error
+    out = {}
+    if fault is not None:
+        out[f"CLM error {fault.code}"] = f"{fault.text}: {fault.detail}" + (f" ({fault.where})" if fault.where else "")
+    if device.store_error:
+        out["CLM memory file"] = f"not written: {device.store_error}"
+    return out

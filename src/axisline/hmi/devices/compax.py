@@ -162,3 +162,12 @@ def acknowledge(device: Any) -> str:
     op.last_error = 0
     device.status[30] = 0.0
     return f"COMPAX Quit: {', '.join(what)}" if what else ""
+
+
+def faults(device: Any) -> dict[str, str]:
+    """The active error (S30 / the last error) and the start-up program's errors, for the event log."""
+    codes = {**DEVICE_ERRORS, **INTERFACE_ERRORS}
+    out = {}
+    for code in {int(device.op.last_error), int(device.status[30])} - {0}:
+        out[f"COMPAX E{code}"] = codes.get(code, "error")
+    return out

@@ -129,3 +129,9 @@ def acknowledge(device: Any) -> str:
 def _release_clear_error(regs: Any) -> None:
     if regs.status.serial_commands >> _CLEAR_ERROR_BIT & 1:
         regs.write(COMMAND_BASE + _CLEAR_ERROR_BIT, 0)
+
+
+def faults(device: Any) -> dict[str, str]:
+    """The active errors (§6), cheap enough for serve's look every 10 ms: the event log's faults."""
+    errors = device.registers.status.error_status
+    return {f"FS701 error {n:02d}": e.message for n, e in ERRORS.items() if errors >> n & 1}

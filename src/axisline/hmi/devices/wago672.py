@@ -230,3 +230,18 @@ def acknowledge(device: Any) -> str:
         if held:
             what.append(f"module {m.index}: {'; '.join(held)}")
     return f"750-672 error quit: {', '.join(what)}" if what else ""
+
+
+def faults(device: Any) -> dict[str, str]:
+    """Each module's error memory and the coupler's watchdog, for the event log: a "watchdog"
+    source changes its text at every expiry, so each trip is an event."""
+    out = {}
+    for m in device.modules:
+        errs = m.device.errors
+        for code, what in ((errs.error, "error"), (errs.warning, "warning")):
+            if code:
+                out[f"750-672 module {m.index} {what}"] = describe(code)
+    expiries = device.coupler.summary()["watchdog_expiries"]
+    if expiries:
+        out["watchdog"] = f"fieldbus watchdog expired ({expiries} time{'s' if expiries != 1 else ''} since start)"
+    return out
