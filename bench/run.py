@@ -12,6 +12,8 @@
   seconds per wall-clock second and cost of one cycle, scope on and off (reference: real time);
   and the cut accuracy of the three FS701 examples (issue 4's quality bars: deterministic
   figures in carriage increments, no timing);
+- examples: every machine in examples/ running its job: us per cycle, real-time factor and
+  deterministic bytecodes per cycle (issue 18's table; bar >= 100x);
 - serve: cycle lateness of `axisline serve` at 1 ms, idle and with 50 clients on each endpoint,
   beside a bare Python loop sleeping to the same deadlines in the same run;
 - sweep: a 40-case FS701 sweep in this process and on a Dask LocalCluster of 1 and 2 workers
@@ -32,6 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_clm import bench_clm  # noqa: E402
 from bench_cycle import bench_cycle  # noqa: E402
+from bench_examples import bench_examples  # noqa: E402
 from bench_compax import bench_compax  # noqa: E402
 from bench_fs701 import bench_fs701, cut_accuracy  # noqa: E402
 from bench_profiles import bench_profiles  # noqa: E402
@@ -57,6 +60,8 @@ def main() -> None:
     bench_compax()
     print()
     bench_clm()
+    print()
+    bench_examples()
     print()
     bench_serve()
     print()
