@@ -205,3 +205,30 @@ def test_replies_the_pipe_cannot_take_now_wait_in_the_outbox_and_the_cycle_never
         cycle.pump(time.perf_counter())  # each pump writes what the pipe takes
         time.sleep(0.001)
     assert [m[3]["i"] for m in got] == list(range(50)) and got[0][0] == "event"
+
+
+def test_a_long_request_waits_for_an_idle_time_that_holds_it_and_keeps_the_order():
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
+    clock = [0.0]
+
+    class View:
+        def call(self, method, args, who):
+            clock[0] += 0.0008 if method == "device" else 0.00001  # the device page takes 0.8 ms
+            return method
+
+    cycle = CycleLink(req_in, rep_out, {"hmi": View})
+    timer = lambda: clock[0]  # noqa: E731
+    req_out.send(("call", 1, "hmi", "call", ("device", {}, "w"), "w", "http"))
+    time.sleep(0.05)
+    assert cycle.pump(until=1.0, timer=timer) == 1  # first time: its cost is not known yet
+    req_out.send(("call", 2, "hmi", "call", ("device", {}, "w"), "w", "http"))
+    req_out.send(("call", 3, "hmi", "call", ("overview", {}, "w"), "w", "http"))
+    time.sleep(0.05)
+    clock[0] = 0.0
+    assert cycle.pump(until=0.0005, timer=timer) == 0  # 0.5 ms of idle time: the page waits, the overview behind it
+    clock[0] = 0.0
+    assert cycle.pump(until=0.002, timer=timer) == 2  # 2 ms: both, in order
+    replies = [rep_in.recv() for _ in range(3)]
+    assert [r[1] for r in replies] == [1, 2, 3]
+    cycle.close()

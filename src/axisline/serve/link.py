@@ -84,6 +84,18 @@ def _portable(exc: BaseException) -> BaseException:
 # ---------------------------------------------------------------------------- cycle side
 
 
+HOLD_CYCLES = 50  # pumps a long request may wait for an idle time that holds it
+_LONG_S = 100e-6  # a request that took longer than this is "long" (the pump schedules it)
+
+
+def _cost_key(message: tuple) -> tuple:
+    if message[0] != "call":
+        return (message[0],)
+    if message[2] == "hmi" and message[4]:
+        return ("hmi", message[4][0])  # the HMI's method: "device" is long, "overview" short
+    return ("call", message[3])
+
+
 class _Outbox:
     """Messages to the endpoint process, written without ever blocking the cycle.
 
@@ -149,6 +161,9 @@ class CycleLink:
         self.audit = audit
         self.answered = 0
         self.slowest: tuple[float, str] = (0.0, "")  # the longest request answered: seconds, what
+        self._costs: dict[tuple, float] = {}  # what each kind of request took (pump)
+        self._held: tuple | None = None  # a long request waiting for enough idle time
+        self._held_for = 0
         self.endpoint_messages: list[tuple] = []  # listening/started/failed, read by serve
 
     @property
@@ -191,21 +206,41 @@ class CycleLink:
         return obj
 
     def pump(self, until: float, timer: Callable[[], float] = time.perf_counter) -> int:
-        """Answer requests until ``until`` (timer seconds) or none is waiting; at least one
-        waiting request is answered even when the cycle has no idle time left, so clients
-        are slowed down by a busy cycle but never starved. Returns how many were handled."""
+        """Answer requests until ``until`` (timer seconds) or none is waiting. Returns how many
+        were handled.
+
+        At least one waiting request is answered even when the cycle has no idle time left, so
+        clients are slowed down by a busy cycle but never starved. A request known to be long
+        (the HMI's device page: up to a millisecond) waits for an idle time that holds it,
+        judged by what the same kind of request took before, at most `HOLD_CYCLES` pumps; later
+        requests wait behind it, so every client's requests keep their order."""
         self._out.flush()
         conn = self._conn
         handled = 0
         try:
-            while conn.poll(0):
+            while True:
+                message = self._held
+                if message is None:
+                    if not conn.poll(0):
+                        break
+                    message = conn.recv()
+                key = _cost_key(message)
+                estimate = self._costs.get(key, 0.0)
                 t0 = timer()
-                message = conn.recv()
+                if estimate > _LONG_S and t0 + estimate > until and self._held_for < HOLD_CYCLES:
+                    self._held = message
+                    self._held_for += 1
+                    break
+                self._held = None
+                self._held_for = 0
                 self._handle(message)
                 handled += 1
                 t1 = timer()
-                if t1 - t0 > self.slowest[0]:
-                    self.slowest = (t1 - t0, f"{message[0]} {message[2] if message[0] == 'call' else ''} {message[3] if message[0] == 'call' else ''}".strip())
+                took = t1 - t0
+                # a decaying maximum: one long answer is remembered for a while, not for ever
+                self._costs[key] = max(took, 0.9 * estimate)
+                if took > self.slowest[0]:
+                    self.slowest = (took, " ".join(str(k) for k in key))
                 if t1 >= until:
                     break
         except (EOFError, OSError):
