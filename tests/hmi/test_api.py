@@ -347,6 +347,10 @@ def test_server_listens_and_stops(hmi):
         assert host == "127.0.0.1" and port > 0 and srv.token
         r = httpx.get(f"http://{host}:{port}/api/overview", timeout=5)
         assert r.status_code == 200 and len(r.json()["axes"]) == 2
+        assert httpx.get(f"http://localhost:{port}/api/info", timeout=5).status_code == 200
+        # DNS rebinding: another site's page whose name now points at 127.0.0.1 sends its own Host
+        rebound = httpx.get(f"http://{host}:{port}/api/overview", headers={"Host": f"evil.example:{port}"}, timeout=5)
+        assert rebound.status_code == 400 and "axes" not in rebound.text
         with pytest.raises(OSError, match=f"cannot listen on 127.0.0.1:{port}"):
             HmiServer(direct_call(h.view), EventLog(), port=port).start()
     finally:

@@ -126,12 +126,18 @@ class _NoTraceback:
                 await _error(f"internal error: {type(e).__name__}: {e}", 500)(scope, receive, send)
 
 
-def create_app(call: Call, events: Any, *, writes_allowed: bool, token: str | None) -> FastAPI:
-    """The HMI application; `call(method, args, who)` returns a Future of MachineView.call."""
+def create_app(call: Call, events: Any, *, writes_allowed: bool, token: str | None,
+               allowed_hosts: list[str] | None = None) -> FastAPI:
+    """The HMI application; `call(method, args, who)` returns a Future of MachineView.call.
+    `allowed_hosts`: the Host headers answered (None: any; server.local_host_names)."""
     if writes_allowed and not token:
         raise ValueError("writes_allowed needs a token (the operator enters it in the HMI)")
     app = FastAPI(title="axisline HMI", docs_url=None, redoc_url=None, openapi_url=None)
     app.add_middleware(_NoTraceback)
+    if allowed_hosts is not None:
+        from starlette.middleware.trustedhost import TrustedHostMiddleware
+
+        app.add_middleware(TrustedHostMiddleware, allowed_hosts=allowed_hosts)
     app.mount("/static", StaticFiles(directory=STATIC), name="static")
 
     @app.exception_handler(HmiRefused)

@@ -27,6 +27,15 @@ __all__ = ["HmiServer"]
 START_TIMEOUT = 10.0  # s for uvicorn to come up
 
 
+def local_host_names(host: str) -> list[str] | None:
+    """The Host headers a server bound to a loopback address answers (None: any). A page on
+    another site that rebinds its own name to 127.0.0.1 (DNS rebinding) sends its own name
+    as Host and is refused, so it cannot read the machine through the operator's browser."""
+    if host in ("127.0.0.1", "::1", "localhost") or host.startswith("127."):
+        return sorted({"127.0.0.1", "localhost", "::1", "[::1]", host})
+    return None
+
+
 class HmiServer:
     """The HMI on HOST:PORT; with `writes_allowed` and no `token`, a random token is made
     (`.token`, to be printed at start)."""
@@ -47,7 +56,7 @@ class HmiServer:
         self.host = host
         self.port = port
         self.writes_allowed = writes_allowed
-        self.app = create_app(call, events, writes_allowed=writes_allowed, token=token)
+        self.app = create_app(call, events, writes_allowed=writes_allowed, token=token, allowed_hosts=local_host_names(host))
         self._server: uvicorn.Server | None = None
         self._thread: threading.Thread | None = None
         self._sock: socket.socket | None = None
