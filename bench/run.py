@@ -18,6 +18,8 @@
   beside a bare Python loop sleeping to the same deadlines in the same run;
 - sweep: a 40-case FS701 sweep in this process and on a Dask LocalCluster of 1 and 2 workers
   (cases/s), the checks before the run, the cluster start and the scheduling overhead per case;
+- cia402: one CANopen axis (CiA 402, CSP) per cycle on the virtual bus with a simulated drive, the
+  axes that fit a 1 ms cycle, and the wire time per axis at 1 Mbit/s;
 - clm: every CLM example (examples/*_clm.toml: programs, Logic Task, axis functions, plant) at
   its 2 ms NC cycle, simulated seconds per wall-clock second (reference: real time).
 
@@ -41,6 +43,7 @@ from bench_profiles import bench_profiles  # noqa: E402
 from bench_serve import bench_serve  # noqa: E402
 from bench_sync import bench_sync  # noqa: E402
 
+from axisline.drives.bench import bench_cia402  # noqa: E402
 from axisline.sweep.bench import bench_sweep  # noqa: E402
 
 
@@ -66,6 +69,8 @@ def main() -> None:
     bench_serve()
     print()
     bench_sweep()
+    print()
+    bench_cia402()
 
 
 if __name__ == "__main__":

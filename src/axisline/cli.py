@@ -510,8 +510,10 @@ def _remove_stale_temporaries(paths: list[Path]) -> None:
 
 
 from .sweep.cli import sweep as _sweep  # noqa: E402  (docs/sweep.md; dask is imported only when a sweep runs)
+from .drives.cli import drives_app  # noqa: E402  (docs/drives.md)
 
 app.command("sweep")(_sweep)
+app.add_typer(drives_app, name="drives")
 
 
 def main() -> None:  # pragma: no cover

@@ -2,7 +2,8 @@
 
     [machine]            name, cycle period, seed, run duration
     [[axis]]             one table per axis: the axis parameters (motion.axis.AxisConfig)
-      [axis.drive]       type = "servo" | "stepper" and the drive model's parameters
+      [axis.drive]       type = "servo" | "stepper" and the drive model's parameters, or
+                         "cia402": a CiA 402 drive on CANopen (drives/config.py)
       [axis.encoder]     optional: an incremental encoder on the motor (counts -> actual position)
       [[axis.switches]]  optional: reference and limit switches on the axis (name, kind, position ...)
     [material]           optional: the material line (web, strip) with its speed profile and slip
@@ -28,6 +29,7 @@ from typing import Annotated, Any, Literal, Union
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from .configerrors import ConfigError, explain, read_text, shown
+from .drives.config import Cia402Entry
 from .job import JobConfig
 from .kernel.clock import MAX_PERIOD_US, MIN_PERIOD_US
 from .motion.axis import AxisConfig
@@ -85,7 +87,8 @@ class StepperEntry(StepperDriveConfig):
         return StepperDriveConfig.model_validate(self.model_dump(exclude={"type"})).build()
 
 
-DriveEntry = Annotated[Union[ServoEntry, StepperEntry], Field(discriminator="type")]
+# a CiA 402 drive on CANopen (drives/): the axis sees the same drive interface
+DriveEntry = Annotated[Union[ServoEntry, StepperEntry, Cia402Entry], Field(discriminator="type")]
 
 
 class SwitchEntry(SwitchConfig):

@@ -248,8 +248,13 @@ class Machine:
         # the axis sees only its own parameters, not the plant tables beside them
         axis_cfg = entry.model_dump(include=set(AxisConfig.model_fields))
         axis = Axis(AxisConfig.model_validate(axis_cfg), self.period)
-        drive = entry.drive.build()
-        encoder = entry.encoder.build(drive) if entry.encoder is not None else None
+        if entry.drive.type == "cia402":  # a drive on CANopen (drives/): its counts come over the bus
+            from .drives import attach
+
+            drive, encoder = attach(self, entry, axis), None
+        else:
+            drive = entry.drive.build()
+            encoder = entry.encoder.build(drive) if entry.encoder is not None else None
         unit = AxisUnit(axis, drive, encoder, entry)
         unit.actual_position = drive.position
         # a disabled axis' set point follows the actual position: seed it with the plant's
@@ -269,7 +274,9 @@ class Machine:
         axis, drive, dt = unit.axis, unit.drive, self.period
         step = drive.step
         stepper = isinstance(drive, StepperDrive)
-        analog = not stepper and unit.config.drive.command == "analog"
+        # the drive takes the set point itself: a stepper's pulses, a CiA 402 drive in CSP
+        positioned = stepper or unit.config.drive.type == "cia402"
+        analog = not positioned and unit.config.drive.command == "analog"
         volts_per_velocity = 1.0 / drive.velocity_per_volt if analog else 0.0
         velocity_per_volt = drive.velocity_per_volt if analog else 0.0
         top = math.inf if stepper else drive.max_velocity
@@ -288,8 +295,8 @@ class Machine:
                 # at or beyond +-10 V (a controller clips its own output there) or the speed limit
                 if drive.saturated or u >= ANALOG_LIMIT_VOLTS or u <= -ANALOG_LIMIT_VOLTS or asked > reach or asked < -reach:
                     unit.note_over(cycle, asked)
-            elif stepper:
-                # open loop: the pulse output follows the set point, the motor follows the pulses
+            elif positioned:
+                # the drive follows the set point: a stepper's pulses (open loop), a CiA 402 drive's target
                 drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
             else:
                 v = unit.velocity_output
@@ -312,6 +319,8 @@ class Machine:
         unit = self.units[axis]
         if isinstance(unit.drive, StepperDrive):
             raise ValueError(f"axis {axis!r}: a stepper drive has no position loop to replace")
+        if unit.config.drive.type == "cia402":
+            raise ValueError(f"axis {axis!r}: a CiA 402 drive in CSP closes its own position loop; a device's loop cannot replace it")
         unit.controller = controller
         unit.controller_volts = bool(volts)
 
@@ -325,6 +334,8 @@ class Machine:
         unit = self.units[axis]
         if isinstance(unit.drive, StepperDrive) and (feedback, output) != (1, 1):
             raise ValueError(f"axis {axis!r}: a stepper drive follows its steps; it has no feedback or command polarity to turn")
+        if unit.config.drive.type == "cia402" and (feedback, output) != (1, 1):
+            raise ValueError(f"axis {axis!r}: a CiA 402 drive's directions are its own parameters (0x607E polarity), set in the drive")
         unit.feedback_sign = float(feedback)
         unit.output_sign = float(output)
 

@@ -50,7 +50,9 @@ def model_table(model: type[BaseModel]) -> list[str]:
 
 
 def render() -> str:
-    from .config import AxisEntry, MachineSection, MarkEntry, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
+    from .config import AxisEntry, MachineSection, MarkEntry, RealtimeConfig, ServoEntry, StepperEntry, SwitchEntry, TraceConfig
+    from .drives.config import Cia402Entry
+    from .plant.config import ServoDriveConfig
     from .job import JobConfig, JobStep
     from .plant.config import ActuatorConfig, DigitalIOConfig, EncoderConfig, MaterialConfig, MeasuringWheelConfig, SpeedChangeConfig
     from .config import MAX_FILE_BYTES
@@ -62,6 +64,8 @@ def render() -> str:
         ("[[axis]]", AxisEntry, "One table per axis: the axis parameters (PLCopen axis, profile, position loop)."),
         ("[axis.drive] type = \"servo\"", ServoEntry, "Servo amplifier with a velocity loop (simulated)."),
         ("[axis.drive] type = \"stepper\"", StepperEntry, "Stepper motor with a microstepping driver (simulated)."),
+        ("[axis.drive] type = \"cia402\"", Cia402Entry, "A CiA 402 servo drive over CANopen in Cyclic Synchronous Position mode (docs/drives.md)."),
+        ("[axis.drive.simulated]", ServoDriveConfig, "With interface = \"virtual\": the servo model of the simulated CiA 402 drive (the [axis.encoder] is its motor encoder)."),
         ("[axis.encoder]", EncoderConfig, "Incremental encoder on the motor; without it the actual position is the drive's."),
         ("[[axis.switches]]", SwitchEntry, "Reference and limit switches on the axis, read as `<axis>.<name>`."),
         ("[material]", MaterialConfig, "The material line (web, strip) and its speed profile."),
@@ -77,6 +81,7 @@ def render() -> str:
         ("[[job.steps]]", JobStep, "One step: an axis command with its arguments, and/or a dwell. A command needs "
          + "; ".join(f"{c}: {', '.join(a)}" for c, a in REQUIRED.items()) + "."),
         ("[trace]", TraceConfig, "The scope: what is recorded each cycle."),
+        ("[realtime]", RealtimeConfig, "Soft real-time measures of `axisline serve` (docs/serve.md); a simulated run ignores them."),
     ]
     out = [
         "# The machine file",
