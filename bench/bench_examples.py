@@ -7,7 +7,9 @@ runs. The bytecode count (sys.settrace, opcode events, over the first 1000 cycle
 machine) is deterministic: the same on every computer and every run, so it shows a change of
 cost that the timings' noise would hide. C calls (numpy, math) count as one instruction.
 
-Bar (issue 18): every example >= 100x real time.
+Bar (issue 18): every example >= 100x real time, but for the bus-bound ones: a machine with a
+CiA 402 drive runs its SYNC and PDOs through python-can's virtual bus to a simulated drive in
+threads (drives/bench.py, decision 1); it is printed, marked, and not held to the bar.
 """
 
 from __future__ import annotations
@@ -24,6 +26,13 @@ BAR = 100.0
 
 def example_files() -> list[Path]:
     return sorted(EXAMPLES.glob("*.toml"))
+
+
+def _close(m: Machine) -> None:
+    if any(a.drive.type == "cia402" for a in m.config.axis):
+        from axisline.drives import close_drives
+
+        close_drives(m)
 
 
 def bytecodes_per_cycle(path: Path, cycles: int = 1000) -> float:
@@ -43,6 +52,7 @@ def bytecodes_per_cycle(path: Path, cycles: int = 1000) -> float:
         m.scheduler.run(cycles)
     finally:
         sys.settrace(None)
+        _close(m)
     return count / cycles
 
 
@@ -54,6 +64,7 @@ def timed(path: Path, runs: int = 3) -> tuple[float, float, int]:
         t0 = time.perf_counter()
         result = m.run()
         wall = time.perf_counter() - t0
+        _close(m)
         if best is None or wall < best[0]:
             best = (wall, result.cycles, result.simulated_s)
     wall, cycles, simulated = best
@@ -73,9 +84,12 @@ def bench_examples(only: list[str] | None = None) -> None:
         except Exception as e:  # an example that cannot run here (a CAN bus the machine lacks): say so
             print(f"  {path.stem:28s} not run: {type(e).__name__}: {e}")
             continue
-        period_ms = Machine.from_file(path).period * 1e3
-        mark = "" if factor >= BAR else "  < bar"
-        if factor < BAR:
+        m = Machine.from_file(path)
+        period_ms = m.period * 1e3
+        bus_bound = any(a.drive.type == "cia402" for a in m.config.axis)
+        _close(m)
+        mark = "  bus-bound (CANopen virtual bus; not held to the bar)" if bus_bound else "" if factor >= BAR else "  < bar"
+        if factor < BAR and not bus_bound:
             below.append(path.stem)
         print(f"  {path.stem:28s} {period_ms:5g} ms {us:9.1f} {factor:9.1f}x {codes:16.0f}{mark}")
     print(f"  below {BAR:g}x: {', '.join(below) if below else 'none'}")
