@@ -35,8 +35,8 @@ def _close(m: Machine) -> None:
         close_drives(m)
 
 
-def bytecodes_per_cycle(path: Path, cycles: int = 1000) -> float:
-    m = Machine.from_file(path)
+def count_bytecodes(m: Machine, cycles: int) -> float:
+    """Python bytecode instructions per cycle over `cycles` cycles of `m` (sys.settrace)."""
     count = 0
 
     def tracer(frame, event, arg):  # noqa: ANN001 - sys.settrace signature
@@ -52,8 +52,15 @@ def bytecodes_per_cycle(path: Path, cycles: int = 1000) -> float:
         m.scheduler.run(cycles)
     finally:
         sys.settrace(None)
-        _close(m)
     return count / cycles
+
+
+def bytecodes_per_cycle(path: Path, cycles: int = 1000) -> float:
+    m = Machine.from_file(path)
+    try:
+        return count_bytecodes(m, cycles)
+    finally:
+        _close(m)
 
 
 def timed(path: Path, runs: int = 3) -> tuple[float, float, int]:

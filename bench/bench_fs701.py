@@ -43,23 +43,9 @@ def bytecodes_per_cycle(cycles: int = 1000) -> float:
     """Python bytecode instructions the running line executes per cycle (every task, scope off),
     counted with sys.settrace over one cut period: a cost figure that, unlike the wall clock,
     is the same on every machine and every run (C calls such as math.floor count as one)."""
-    m = _running(False)
-    count = 0
+    from bench_examples import count_bytecodes
 
-    def tracer(frame, event, arg):  # noqa: ANN001 - sys.settrace signature
-        nonlocal count
-        if event == "call":
-            frame.f_trace_opcodes = True
-        elif event == "opcode":
-            count += 1
-        return tracer
-
-    sys.settrace(tracer)
-    try:
-        m.scheduler.run(cycles)
-    finally:
-        sys.settrace(None)
-    return count / cycles
+    return count_bytecodes(_running(False), cycles)
 
 
 def bench_fs701(runs: int = 5) -> None:

@@ -8,10 +8,10 @@ import sys
 import time
 
 
-def serve(*args: str) -> tuple[subprocess.Popen, dict[str, str]]:
+def serve(*args: str, cwd=None) -> tuple[subprocess.Popen, dict[str, str]]:
     """Start `axisline serve`; return it once it printed "ready", with its endpoints."""
     proc = subprocess.Popen([sys.executable, "-m", "axisline.cli", "serve", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=cwd)
     endpoints = {}
     assert proc.stdout is not None
     for line in proc.stdout:

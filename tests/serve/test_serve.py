@@ -17,6 +17,8 @@ from pymodbus.client import ModbusTcpClient
 
 from axisline.devices.fs701.registers import encode_words
 
+import serving
+
 ROOT = Path(__file__).resolve().parents[2]
 FS701 = ROOT / "examples" / "flying_shear.toml"
 FAULTY = ROOT / "tests" / "hmi" / "fault_machine.toml"
@@ -24,16 +26,7 @@ CUTTING_LENGTH = 0x0000
 
 
 def start(*args: str) -> tuple[subprocess.Popen, dict[str, str]]:
-    proc = subprocess.Popen([sys.executable, "-m", "axisline.cli", "serve", *args],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
-    endpoints: dict[str, str] = {}
-    for line in proc.stdout:
-        kind, _, where = line.strip().partition(" ")
-        if kind == "ready":
-            return proc, endpoints
-        endpoints[kind] = where
-    proc.kill()
-    raise AssertionError(f"serve did not start: {proc.stderr.read()}")
+    return serving.serve(*args, cwd=ROOT)
 
 
 def stop(proc: subprocess.Popen) -> tuple[str, str]:

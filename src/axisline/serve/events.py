@@ -27,6 +27,7 @@ An event is a dict: "seq" (1, 2, ... in logging order), "time" (ISO 8601, UTC, m
 from __future__ import annotations
 
 import json
+import queue
 import threading
 from collections import deque
 from datetime import datetime, timezone
@@ -37,6 +38,9 @@ __all__ = ["EventLog", "format_event"]
 
 #: events kept in memory for the HMI's event page and `recent()`
 KEEP = 2000
+#: console lines waiting to be printed; beyond, lines are dropped (and counted) rather than
+#: holding up the endpoint process
+CONSOLE_BACKLOG = 10_000
 
 
 def format_event(event: dict[str, Any]) -> str:
@@ -76,6 +80,14 @@ class EventLog:
         keep: int = KEEP,
     ) -> None:
         self._console = console
+        # the console is written by a thread of its own: a terminal or pipe that reads slowly
+        # (or not at all) must not hold up whoever emits (the link's reader: every reply)
+        self._lines: queue.Queue[str | None] = queue.Queue(maxsize=CONSOLE_BACKLOG)
+        self.dropped = 0  # console lines dropped while the console did not keep up
+        self._writer: threading.Thread | None = None
+        if console is not None:
+            self._writer = threading.Thread(target=self._write_console, name="event-console", daemon=True)
+            self._writer.start()
         self._lock = threading.Lock()
         self._events: deque[dict[str, Any]] = deque(maxlen=keep)
         self._seq = 0
@@ -106,9 +118,23 @@ class EventLog:
                 except (OSError, ValueError):
                     pass  # a full disk must not stop the machine; the console still shows it
             self._changed.notify_all()
-        if self._console is not None:
-            self._console(format_event(event))
+        if self._writer is not None:
+            try:
+                self._lines.put_nowait(format_event(event))
+            except queue.Full:
+                self.dropped += 1
         return event
+
+    def _write_console(self) -> None:
+        assert self._console is not None
+        while True:
+            line = self._lines.get()
+            if line is None:
+                return
+            dropped, self.dropped = self.dropped, 0
+            if dropped:
+                self._console(f"({dropped} event line(s) not shown: the console did not keep up; --log has them all)")
+            self._console(line)
 
     def recent(self, after: int = 0, limit: int = 200) -> list[dict[str, Any]]:
         """The events with seq > after, oldest first, at most ``limit`` (the newest ones)."""
@@ -127,6 +153,12 @@ class EventLog:
             return self._seq
 
     def close(self) -> None:
+        if self._writer is not None:
+            try:
+                self._lines.put(None, timeout=2.0)
+            except queue.Full:
+                pass
+            self._writer.join(2.0)
         with self._lock:
             if self._file is not None:
                 self._file.close()
