@@ -14,7 +14,6 @@ their print marks, in carriage increments; the ramps example also with the FS701
 from __future__ import annotations
 
 import statistics
-import sys
 import time
 from pathlib import Path
 

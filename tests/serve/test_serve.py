@@ -4,7 +4,6 @@ event log, the realtime measures and their messages, the trace and report when s
 from __future__ import annotations
 
 import json
-import os
 import signal
 import subprocess
 import sys
@@ -12,7 +11,6 @@ import time
 from pathlib import Path
 
 import psutil
-import pytest
 from pymodbus.client import ModbusTcpClient
 
 from axisline.devices.fs701.registers import encode_words
