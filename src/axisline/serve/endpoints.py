@@ -4,8 +4,8 @@ Forked by the cycle process before it starts cycling (serve/run.py). Everything 
 touches the machine goes through the link (serve/link.py): the servers are the same classes
 as in one process (fieldbus/), given remote stand-ins for the device's endpoints and for the
 command queue. The process runs at a lower priority (nice 5) than the cycle, so on a loaded
-machine the scheduler prefers the cycle, and on the CPUs the cycle does not use when
-`[realtime] cpus` pins it.
+machine the scheduler prefers the cycle (with `[realtime]` measures), and on the CPUs the
+cycle does not use when `[realtime] cpus` pins it.
 
 It ignores Ctrl-C and SIGTERM (they go to the whole process group): the cycle process
 decides when to stop, stops the axes with their ramps, and then sends "shutdown"; if the
@@ -16,8 +16,12 @@ Decisions (issue 17 point -> choice, why):
 1. "An event log ... on the console in readable form" -> on standard error; standard output
    keeps the machine-readable lines that scripts and tests parse ("modbus HOST:PORT",
    "ready", "stopped"). Test: tests/serve/test_serve.py::test_the_event_log_names_who_wrote_what_old_to_new_and_the_refusals.
-2. The endpoint process runs at nice 5 and, with `[realtime] cpus`, on the CPUs the cycle does
-   not use: under load the OS prefers the cycle. Test: the serve lateness bench (`make bench`).
+2. With `[realtime]` measures switched on, the endpoint process runs at nice 5 and, with
+   `[realtime] cpus`, on the CPUs the cycle does not use: under load the OS prefers the cycle.
+   Without measures both processes have the same priority: on a machine loaded by other work a
+   nice endpoint process got too little CPU and its clients' requests timed out (seen in a
+   loaded test run), which a machine nobody tuned must not do. Test: the serve lateness bench
+   (`make bench`) runs both ways.
 3. kill -9 of the cycle process ends the endpoint process (end-of-file on the link), so no
    orphan keeps the ports. Test: test_the_endpoint_process_ends_when_the_cycle_process_is_killed.
 """
@@ -48,6 +52,7 @@ class EndpointSpec:
     token: str | None = None
     log_path: str | None = None
     cpus: set[int] | None = None
+    nice: int = 0  # NICE with [realtime] measures, else 0 (decision 2)
 
 
 def _console(line: str) -> None:
@@ -66,10 +71,11 @@ def endpoint_main(replies: Any, requests: Any, spec: EndpointSpec, parent_ends: 
         end.close()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
-    try:
-        os.nice(NICE)
-    except OSError:
-        pass
+    if spec.nice:
+        try:
+            os.nice(spec.nice)
+        except OSError:
+            pass
     if spec.cpus:
         try:
             os.sched_setaffinity(0, spec.cpus)

@@ -21,7 +21,7 @@ import os
 import time
 from typing import Any
 
-__all__ = ["IdleCollector", "apply_cycle_measures", "endpoint_cpus"]
+__all__ = ["IdleCollector", "apply_cycle_measures", "endpoint_cpus", "measures_on"]
 
 # gc = "idle": collect generation 0 once this many allocations are pending (Python's own
 # threshold is 700; a collection of that many young objects takes tens of microseconds) ...
@@ -57,6 +57,11 @@ def apply_cycle_measures(realtime: Any) -> list[str]:
     if realtime.busy_wait_us:
         notes.append(f"busy-wait {realtime.busy_wait_us} us before each deadline")
     return notes
+
+
+def measures_on(realtime: Any) -> bool:
+    """Whether the user switched on any soft real-time measure."""
+    return bool(realtime.gc == "idle" or realtime.cpus or realtime.fifo_priority or realtime.busy_wait_us)
 
 
 def endpoint_cpus(realtime: Any) -> set[int] | None:

@@ -24,9 +24,9 @@ from pathlib import Path
 from typing import Any, Callable
 
 from .cycle import CycleSide
-from .endpoints import EndpointSpec, endpoint_main
+from .endpoints import NICE, EndpointSpec, endpoint_main
 from .link import CycleLink
-from .realtime import apply_cycle_measures, endpoint_cpus
+from .realtime import apply_cycle_measures, endpoint_cpus, measures_on
 
 __all__ = ["ServeOptions", "serve_machine", "ServeError"]
 
@@ -75,6 +75,7 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
         token=token,
         log_path=None if opts.log_path is None else str(opts.log_path),
         cpus=endpoint_cpus(realtime),
+        nice=NICE if measures_on(realtime) else 0,
     )
     ctx = multiprocessing.get_context("fork")  # before any thread of this process exists
     requests_in, requests_out = ctx.Pipe(duplex=False)  # endpoint -> cycle
