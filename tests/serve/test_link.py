@@ -232,3 +232,27 @@ def test_a_long_request_waits_for_an_idle_time_that_holds_it_and_keeps_the_order
     replies = [rep_in.recv() for _ in range(3)]
     assert [r[1] for r in replies] == [1, 2, 3]
     cycle.close()
+
+
+def test_one_slow_answer_does_not_make_a_short_request_wait():
+    req_in, req_out = multiprocessing.Pipe(duplex=False)
+    rep_in, rep_out = multiprocessing.Pipe(duplex=False)
+    clock = [0.0]
+    slow = [True]
+
+    class Regs:
+        def read_registers(self, kind, address, count):
+            clock[0] += 0.003 if slow[0] else 0.00002  # once preempted for 3 ms, then 20 us as always
+            slow[0] = False
+            return [0] * count
+
+    cycle = CycleLink(req_in, rep_out, {"register": Regs})
+    for i in range(3):
+        req_out.send(("call", i, "register", "read_registers", ("holding", 0, 1), "t", "modbus"))
+    time.sleep(0.05)
+    assert cycle.pump(until=1.0, timer=lambda: clock[0]) == 3
+    req_out.send(("call", 9, "register", "read_registers", ("holding", 0, 1), "t", "modbus"))
+    time.sleep(0.05)
+    clock[0] = 0.0
+    assert cycle.pump(until=0.0005, timer=lambda: clock[0]) == 1  # not held: its usual cost fits
+    cycle.close()

@@ -53,6 +53,7 @@ import pickle
 import struct
 import threading
 import time
+from collections import deque
 from concurrent.futures import Future
 from typing import Any, Callable
 
@@ -161,7 +162,7 @@ class CycleLink:
         self.audit = audit
         self.answered = 0
         self.slowest: tuple[float, str] = (0.0, "")  # the longest request answered: seconds, what
-        self._costs: dict[tuple, float] = {}  # what each kind of request took (pump)
+        self._costs: dict[tuple, deque[float]] = {}  # what each kind of request took lately (pump)
         self._held: tuple | None = None  # a long request waiting for enough idle time
         self._held_for = 0
         self.endpoint_messages: list[tuple] = []  # listening/started/failed, read by serve
@@ -225,7 +226,10 @@ class CycleLink:
                         break
                     message = conn.recv()
                 key = _cost_key(message)
-                estimate = self._costs.get(key, 0.0)
+                seen = self._costs.get(key)
+                # the least of the last few: preemption and page faults only ever add time,
+                # so one slow answer does not make a short request "long"
+                estimate = min(seen) if seen else 0.0
                 t0 = timer()
                 if estimate > _LONG_S and t0 + estimate > until and self._held_for < HOLD_CYCLES:
                     self._held = message
@@ -237,8 +241,9 @@ class CycleLink:
                 handled += 1
                 t1 = timer()
                 took = t1 - t0
-                # a decaying maximum: one long answer is remembered for a while, not for ever
-                self._costs[key] = max(took, 0.9 * estimate)
+                if seen is None:
+                    seen = self._costs[key] = deque(maxlen=8)
+                seen.append(took)
                 if took > self.slowest[0]:
                     self.slowest = (took, " ".join(str(k) for k in key))
                 if t1 >= until:
