@@ -124,6 +124,24 @@ def test_di1_stop1_n_stops_like_stop2_n():
     assert r.has(S2.StandStill)
 
 
+def test_stop_ramp_runs_at_current_ratio_stop_and_rest_at_the_standstill_ratio():
+    # decision D25 (drive.py): Current_Ratio_Stop while the STOP ramp brakes, the standstill
+    # ratio once at rest, also with Stop2_N still 0 (150 % at rest would trip the thermal model)
+    r = Rig(Current_Ratio_Stop=120, Current_Ratio_StandStill=20, Current_Ratio_Drive=60)
+    r.enable()
+    r.select(C1.M_Positioning)
+    r.positioning(5000, 32767, 50000)
+    r.start()
+    r.until(lambda: r.has(S2.On_Speed), 500)
+    assert r.dev.current_ratio == 60 and r.dev.current_phase.name == "DRIVE"
+    r.c1 &= ~C1.Stop2_N
+    r.step()
+    assert r.dev.current_ratio == 120 and r.dev.current_phase.name == "STOP"
+    r.until(lambda: r.has(S2.StandStill))
+    assert r.dev.current_ratio == 20 and r.dev.current_phase.name == "STANDSTILL"
+    assert r.dev.phase_current == 5.0 * 20 / 100  # Current 50 (0.1 A) at 20 %
+
+
 def test_enable_off_coasts_ready_and_ack_drop_at_once():
     r = Rig()
     r.enable()

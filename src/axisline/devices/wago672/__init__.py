@@ -6,8 +6,12 @@
 Modules: image (12-byte process image), config_table (512-byte configuration), units (scaling),
 errors (error table, error memory, LED blink code), bits (bit field seam), trajectory (ramp
 types on the kernel's profile generator), referencing (reference runs), thermal (current phases,
-overcurrent model), device (the module: handshakes, modes, move commands; its docstring lists
-the decisions taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points). Around the
+overcurrent model), device (the module: power-on, process image, the tick, errors) with its
+parts modes (mode selection, Start, positioning, speed control, PreCalc, referencing, jog),
+commands (DRIVE_COMMAND and run-program move commands), watches (limits, end of motions, flags,
+source bits), drive (output stage, axis hand-over, STOP ramps, scaling, current, brake) and
+seams (mailbox, run program, position table, input wiring); their docstrings list the decisions
+taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points (D1 .. D26). Around the
 module: coupler (Modbus register map, watchdog), personality (the machine file's [device]),
 plc (the [[device.plc]] script that stands in for the PLC in `axisline run`), runreport (the
 run's headline and report section), client (the PLC side over Modbus).

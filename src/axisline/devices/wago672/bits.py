@@ -19,17 +19,33 @@ WR_BIT on a source bit (0..127) or on a bit without a pointer (224..255) is 1243
 IO_USERBIT_READONLY, on a target not linked to MZERO/MONE 1242 IO_ILLEGAL_USERBITNR.
 
 Bit numbers are the manual's names as constants of `Bit` (e.g. `Bit.Stop_N_ACK == 0x11`).
+
+The device reads some 60 bits every 1 ms tick (its input signals, the status bytes S1..S3,
+OUT1/OUT2), so the links are not followed per read: `BitTable` follows every pointer chain once
+after each change of the configuration (`ConfigTable.generation`) and keeps, per bit, the place
+in `field` it reads; a `BitGroup` (`group`, `values`) reads a set of bits in one go.
+
+Decisions (issue 18: "a bit table that resolves its links once per configuration change"):
+* B1 A chain that passes a filter bit FILT1..8 or is deeper than four levels is still followed
+  at each read: a filter's output is computed when it is read (filters.py: functions 0 .. 2, 7 ..
+  11 are undelayed), and the manual issues 1245 each time such a chain is used ("Too many nesting
+  levels will yield an ambiguous result and the error ... will be issued"), so neither has one
+  place to read; every other chain ends at a source bit, a MZERO/MONE value or a bit without a
+  pointer, which is what the table keeps. Reads through either give what the chain gives (tests:
+  test_links_and_values::test_random_linkings_read_as_the_manual_rule_after_every_change,
+  test_filters::test_too_deep_links_read_zero_and_raise_1245_without_stopping_the_module).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from enum import IntEnum
+from operator import itemgetter
 
 from axisline.devices.wago672.config_table import ConfigTable
 from axisline.devices.wago672.errors import WagoError
 
-__all__ = ["Bit", "BitTable", "MAX_NESTING"]
+__all__ = ["Bit", "BitGroup", "BitTable", "MAX_NESTING", "PACK", "SPREAD"]
 
 MAX_NESTING = 4  # "the maximum number of nesting levels is four (4)" (§3.10.4)
 
@@ -144,10 +160,39 @@ class Bit(IntEnum):
 
 # targets that have a pointer in the configuration table (128 .. 223)
 _POINTER_TARGETS = range(128, 224)
+_FILTER_BITS = range(168, 176)  # FILT1 .. FILT8
+_SLOW = -1  # a link that is read through the chain each time (a filter on it, or too deep)
+
+# eight 0/1 values <-> the byte they make (bit i = value i): a control byte spread over eight
+# source bits, eight bit values packed into a status byte, without a loop over the bits
+SPREAD = tuple(bytes((v >> i) & 1 for i in range(8)) for v in range(256))
+PACK = {bits: v for v, bits in enumerate(SPREAD)}
+_BOOL = (False, True)
+
+
+class BitGroup:
+    """Bits the device reads together every tick (its input signals, the status bytes): the
+    table keeps one gatherer per group, rebuilt when the links change (`BitTable.group`)."""
+
+    __slots__ = ("bits", "gather")
+
+    def __init__(self, bits: tuple[int, ...]) -> None:
+        self.bits = bits
+        # field -> the group's values, or None while one of the bits needs the chain (_SLOW)
+        self.gather: Callable[[bytearray], tuple[int, ...]] | None = None
 
 
 class BitTable:
     """256 bits by number: sources stored, targets resolved through their pointers.
+
+    `field` holds the values: 0 .. 127 the source bits, 128 .. 223 the values of targets
+    linked to MZERO/MONE (written by WR_BIT), 224 .. 255 always 0 (bits without a pointer).
+    The device writes its source bits straight into it (`put` for everyone else).
+
+    The links are resolved once per configuration change, not per read: `_link[n]` is the
+    place in `field` that bit n reads, found by following the pointer chain as the manual
+    describes it; a chain through a filter (its output is computed when read) or deeper than
+    four levels (an error each time it is read) is followed at each read, as before.
 
     `filter_output(n, input) -> bool` computes FILTn (n = 1..8) from its input; the
     placeholder passes the input through (filter function 0).
@@ -155,28 +200,81 @@ class BitTable:
 
     def __init__(self, config: ConfigTable) -> None:
         self.config = config
-        self._src = bytearray(128)
-        self._src[Bit.ONE] = 1
-        self._src[Bit.MONE] = 1
-        self._marker = bytearray(256)  # values of targets linked to MZERO / MONE
+        self.field = bytearray(256)
+        self.field[Bit.ONE] = 1
+        self.field[Bit.MONE] = 1
         self.filter_output: Callable[[int, bool], bool] = lambda n, value: value
         # set by mailbox.attach: report 1245 and read 0 instead of raising (every reader of a bit)
         self.on_error: Callable[[int, str], None] | None = None
         self._ptr: list[int] = []  # pointers of targets 128..223, refreshed when the config changes
+        self._link: list[int] = list(range(256))
+        self._groups: list[BitGroup] = []
+        self._bytes: dict[int, BitGroup] = {}  # status bytes by their first bit
         self._generation = -1
         self.reset()
 
+    # ---- links
     def _pointers(self) -> list[int]:
         if self._generation != self.config.generation:
-            get = self.config.get
-            self._ptr = [get(t) for t in _POINTER_TARGETS]
-            self._generation = self.config.generation
+            self._relink()
         return self._ptr
+
+    def _relink(self) -> None:
+        """Follow every pointer chain once (after a configuration change)."""
+        get = self.config.get
+        self._ptr = [get(t) for t in _POINTER_TARGETS]
+        self._link = [self._chain_end(n, 0) for n in range(256)]
+        self._generation = self.config.generation
+        for g in self._groups:
+            places = [self._link[n] for n in g.bits]
+            g.gather = None if _SLOW in places else itemgetter(*places)
+
+    def _chain_end(self, n: int, depth: int) -> int:
+        """The place in `field` bit n reads (the steps of `_resolve`), or _SLOW."""
+        if n < 128 or n >= 224:
+            return n
+        if n in _FILTER_BITS:
+            return _SLOW
+        ptr = self._ptr[n - 128]
+        if ptr == Bit.MZERO or ptr == Bit.MONE:
+            return n
+        if ptr >= 128:
+            if depth + 1 >= MAX_NESTING or ptr == n:
+                return _SLOW
+            return self._chain_end(ptr, depth + 1)
+        return ptr
+
+    def group(self, bits: tuple[int, ...]) -> BitGroup:
+        """Register bits (at least two, 0 .. 255) that are read together with `values`."""
+        if len(bits) < 2 or not all(0 <= n <= 255 for n in bits):
+            raise ValueError(f"a bit group needs two or more bit numbers 0 .. 255, got {bits!r}")
+        g = BitGroup(tuple(int(n) for n in bits))
+        self._groups.append(g)
+        self._generation = -1  # its gatherer is made with the next read
+        return g
+
+    def values(self, g: BitGroup) -> tuple[bool, ...]:
+        """The values of a group's bits, in its order (as `read` of each, in that order)."""
+        if self._generation != self.config.generation:
+            self._relink()
+        gather = g.gather
+        if gather is not None:
+            return tuple(map(_BOOL.__getitem__, gather(self.field)))
+        return tuple(self._resolve(n, 0) for n in g.bits)
+
+    def levels(self, g: BitGroup) -> bytes:
+        """`values` as 0/1 bytes (PACK[levels[i:i + 8]] is a byte of eight of them)."""
+        if self._generation != self.config.generation:
+            self._relink()
+        gather = g.gather
+        if gather is not None:
+            return bytes(gather(self.field))
+        return bytes(self._resolve(n, 0) for n in g.bits)
 
     def reset(self) -> None:
         """After a reset: MZERO-linked bits are 0, MONE-linked bits are 1 (§3.10.4.1)."""
         for t in _POINTER_TARGETS:
-            self._marker[t] = 1 if self.config.get(t) == Bit.MONE else 0
+            self.field[t] = 1 if self.config.get(t) == Bit.MONE else 0
 
     # ---- sources (the device, and later the filters/cams/recorder, write these)
     def set_source(self, n: int, value: bool) -> None:
@@ -184,43 +282,48 @@ class BitTable:
             raise WagoError(1241, f"source bit {n} is outside 0 .. 127")
         if n in (Bit.ZERO, Bit.ONE, Bit.MZERO, Bit.MONE):
             raise WagoError(1243, f"bit {n} is a constant and cannot be written")
-        self._src[n] = 1 if value else 0
+        self.field[n] = 1 if value else 0
 
     def put(self, n: int, value: bool) -> None:
         """set_source without the checks, for the device's own source bits (hot path)."""
-        self._src[n] = 1 if value else 0
+        self.field[n] = 1 if value else 0
 
     def set_byte(self, first: int, value: int) -> None:
         """Eight source bits first .. first+7 from one byte (control bytes -> KBUS_CTRLx_y)."""
-        for i in range(8):
-            self._src[first + i] = (value >> i) & 1
+        self.field[first : first + 8] = SPREAD[value & 0xFF]
 
     # ---- reading
     def read(self, n: int) -> bool:
         """Value of bit n (0 .. 255): a source, or the source a target's pointer chain ends at."""
         if type(n) is not int and (isinstance(n, bool) or not isinstance(n, int)) or not 0 <= n <= 255:
             raise WagoError(1241, f"bit number {n!r} is outside 0 .. 255")
+        if self._generation != self.config.generation:
+            self._relink()
+        place = self._link[n]
+        if place >= 0:
+            return self.field[place] == 1
         return self._resolve(n, 0)
 
     def _resolve(self, n: int, depth: int) -> bool:
+        """Follow the pointer chain of bit n (the slow path: filters and too deep links)."""
         if n < 128:
-            return bool(self._src[n])
+            return bool(self.field[n])
         if n >= 224:
             return False  # no pointer (unused or internal bits)
         ptr = self._pointers()[n - 128]
         if 168 <= n <= 175:  # FILTn: the pointer selects the filter input, reading gives the output
             return bool(self.filter_output(n - 167, self._filter_input(n, ptr, depth)))
         if ptr in (Bit.MZERO, Bit.MONE):
-            return bool(self._marker[n])
+            return bool(self.field[n])
         if ptr >= 128:
             if depth + 1 >= MAX_NESTING or ptr == n:
                 return self._too_deep(n)
             return self._resolve(ptr, depth + 1)
-        return bool(self._src[ptr])
+        return bool(self.field[ptr])
 
     def _filter_input(self, n: int, ptr: int, depth: int) -> bool:
         if ptr in (Bit.MZERO, Bit.MONE):
-            return bool(self._marker[n])  # written by WR_BIT: the filter's input
+            return bool(self.field[n])  # written by WR_BIT: the filter's input
         return self._resolve(ptr, depth + 1) if depth < MAX_NESTING else self._too_deep(n)
 
     def filter_input(self, n: int) -> bool:
@@ -238,6 +341,14 @@ class BitTable:
 
     def byte(self, first: int) -> int:
         """Eight bits first .. first+7 as one byte (KBUS_ST1_0.. -> S1, ...)."""
+        g = self._bytes.get(first)
+        if g is None:
+            g = self._bytes[first] = self.group(tuple(range(first, first + 8)))
+        if self._generation != self.config.generation:
+            self._relink()
+        gather = g.gather
+        if gather is not None:
+            return PACK[bytes(gather(self.field))]
         v = 0
         for i in range(8):
             if self.read(first + i):
@@ -257,7 +368,7 @@ class BitTable:
             raise WagoError(1243, f"bit {n:#04x} is {'a source bit' if n < 128 else 'an internal bit'} and cannot be written")
         if not self.writable(n):
             raise WagoError(1242, f"bit {n:#04x} is not linked to MZERO or MONE and cannot be set")
-        self._marker[n] = 1 if value else 0
+        self.field[n] = 1 if value else 0
 
     def sources(self) -> bytes:
-        return bytes(self._src)
+        return bytes(self.field[:128])

@@ -38,6 +38,7 @@ Decisions (wago.md §4.1/§4.2):
 
 from __future__ import annotations
 
+import itertools
 import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
@@ -363,11 +364,34 @@ def _check(entry: ConfigEntry, value: object) -> int:
     return value
 
 
+_GENERATIONS = itertools.count(1)
+
+
+class _Values(dict):
+    """name or address -> value, decoded at the first read after a change (`ConfigTable.values`)."""
+
+    __slots__ = ("_table",)
+
+    def __init__(self, table: ConfigTable) -> None:
+        super().__init__()
+        self._table = table
+
+    def __missing__(self, key: str | int) -> int:
+        value = self._table._read(key)  # KeyError naming the key when there is no such entry
+        self[key] = value
+        return value
+
+
 class ConfigTable:
     """The configuration data set in RAM: 512 bytes with typed access.
 
     `defaults`: FACTORY_DEFAULT overrides by name (e.g. the alternative defaults of
-    wago.md §4.2). `generation` counts changes so the device can cache derived values.
+    wago.md §4.2). `generation` changes with every change of the values, and no two tables
+    share one, so the device can cache what it derives from them (the bit links).
+
+    `values`: the values by name (or address) as a plain dict, for the device's 1 ms tick,
+    which reads dozens of them: a value is decoded at its first read and kept until the next
+    change. Read only: every write goes through `set`/`update`/... and their range checks.
     """
 
     def __init__(self, defaults: Mapping[str, int] | None = None) -> None:
@@ -382,12 +406,12 @@ class ConfigTable:
             for e, value in staged.items():
                 self._factory[e.address : e.address + e.size] = _encode(e, value)
         self._data = bytearray(self._factory)
-        self._cache: dict[str | int, int] = {}
-        self.generation = 0
+        self.values = _Values(self)
+        self.generation = next(_GENERATIONS)
 
     def _changed(self) -> None:
-        self._cache.clear()
-        self.generation += 1
+        self.values.clear()
+        self.generation = next(_GENERATIONS)
 
     # ---- lookup
     @staticmethod
@@ -414,14 +438,11 @@ class ConfigTable:
 
     # ---- typed access
     def get(self, key: str | int) -> int:
-        try:
-            return self._cache[key]  # the device reads dozens of values per 1 ms tick
-        except KeyError:
-            pass
+        return self.values[key]
+
+    def _read(self, key: str | int) -> int:
         e = self.entry(key)
-        v = 0 if e.ignored else _decode(e, bytes(self._data[e.address : e.address + e.size]))
-        self._cache[key] = v
-        return v
+        return 0 if e.ignored else _decode(e, bytes(self._data[e.address : e.address + e.size]))
 
     __getitem__ = get
 
@@ -545,8 +566,8 @@ class ConfigTable:
         other = ConfigTable.__new__(ConfigTable)
         other._factory = bytearray(self._factory)
         other._data = bytearray(self._data)
-        other._cache = {}
-        other.generation = 0
+        other.values = _Values(other)
+        other.generation = next(_GENERATIONS)
         return other
 
     def __repr__(self) -> str:

@@ -144,6 +144,10 @@ class FilterBank:
         self.device = device
         self._f = [_Filter() for _ in range(FILTERS)]
         self._cycle = 0
+        # the configuration generation the filters' functions were last taken from, and the
+        # filters whose tick does something (functions 2 .. 6 and the counters)
+        self._generation: int | None = None
+        self._ticking: list[int] = []
         device.bits.filter_output = self.output
         device.bits.on_error = device.raise_error
         device.tick_hooks.append(self.tick)
@@ -152,10 +156,10 @@ class FilterBank:
 
     # ---- configuration
     def function(self, n: int) -> int:
-        return self.device.config[224 + n - 1]
+        return self.device.config.values[224 + n - 1]
 
     def time(self, n: int) -> int:
-        return self.device.config[232 + 4 * (n - 1)]
+        return self.device.config.values[232 + 4 * (n - 1)]
 
     # ---- the bit FILTn
     def output(self, n: int, value: bool) -> bool:
@@ -256,81 +260,100 @@ class FilterBank:
         for f in self._f:
             f.function = -1
             f.reset()
+        self._generation = None
 
     def tick(self, cycle: int) -> None:
         self._cycle = cycle
-        bits = self.device.bits
-        for i, f in enumerate(self._f):
-            n = i + 1
+        generation = self.device.config.generation
+        if generation != self._generation:
+            # a changed configuration (or a reset): take each filter's function before its
+            # tick, one filter after the other, as the module does
+            self._generation = generation
+            self._ticking = []
+            for i in range(FILTERS):
+                self._tick_filter(i, cycle, sync=True)
+            return
+        # the functions are the configuration's: only the filters that work in a tick
+        for i in self._ticking:
+            self._tick_filter(i, cycle)
+
+    def _tick_filter(self, i: int, cycle: int, sync: bool = False) -> None:
+        f = self._f[i]
+        n = i + 1
+        if sync:
             fn = self.function(n)
             if fn != f.function:
                 f.reset()
                 f.function = fn
             if fn in (FilterFunction.NONE, FilterFunction.INVERSION, FilterFunction.MATH):
-                continue
-            try:
-                x = bits.filter_input(n)
-            except WagoError as e:
-                self.device.raise_error(e.code, e.text)
-                continue
-            prev = f.prev
-            rising = prev is False and x
-            falling = bool(prev) and not x
-            f.prev = x
-            t = self.time(n)
-            if fn == FilterFunction.START_EDGE:
-                if not x:
-                    f.armed = True
-            elif fn == FilterFunction.LOW_PASS:
-                if prev is None:
-                    f.output = x
-                elif x != f.output:
-                    if f.since is None:
-                        f.since = cycle
-                    if cycle - f.since >= t:
-                        f.output = x
-                        f.since = None
-                else:
-                    f.since = None
-            elif fn == FilterFunction.PULSE_EXTENSION:
-                if x:
-                    f.output = True
-                    f.since = None
-                elif f.output:
-                    if falling or f.since is None:
-                        f.since = cycle
-                    if cycle - f.since >= t:
-                        f.output = False
-                        f.since = None
-            elif fn == FilterFunction.MONOFLOP:
-                if f.output and cycle - f.since >= t:  # type: ignore[operator]
-                    f.output = False
-                    f.since = None
-                if rising and not f.output and f.since is None:
+                return
+            self._ticking.append(i)
+        else:
+            fn = f.function
+        bits = self.device.bits
+        try:
+            x = bits.filter_input(n)
+        except WagoError as e:
+            self.device.raise_error(e.code, e.text)
+            return
+        prev = f.prev
+        rising = prev is False and x
+        falling = bool(prev) and not x
+        f.prev = x
+        t = self.time(n)
+        if fn == FilterFunction.START_EDGE:
+            if not x:
+                f.armed = True
+        elif fn == FilterFunction.LOW_PASS:
+            if prev is None:
+                f.output = x
+            elif x != f.output:
+                if f.since is None:
                     f.since = cycle
-                    f.output = t > 0
-                    if not f.output:
-                        f.since = None
-            elif fn == FilterFunction.PULSE_DELAY:
-                if x:
-                    if f.since is None:
-                        f.since = cycle
-                    if cycle - f.since >= t:
-                        f.output = True
-                else:
+                if cycle - f.since >= t:
+                    f.output = x
+                    f.since = None
+            else:
+                f.since = None
+        elif fn == FilterFunction.PULSE_EXTENSION:
+            if x:
+                f.output = True
+                f.since = None
+            elif f.output:
+                if falling or f.since is None:
+                    f.since = cycle
+                if cycle - f.since >= t:
                     f.output = False
                     f.since = None
-            elif rising:  # counters
-                if fn == FilterFunction.COUNTER_UP:
+        elif fn == FilterFunction.MONOFLOP:
+            if f.output and cycle - f.since >= t:  # type: ignore[operator]
+                f.output = False
+                f.since = None
+            if rising and not f.output and f.since is None:
+                f.since = cycle
+                f.output = t > 0
+                if not f.output:
+                    f.since = None
+        elif fn == FilterFunction.PULSE_DELAY:
+            if x:
+                if f.since is None:
+                    f.since = cycle
+                if cycle - f.since >= t:
+                    f.output = True
+            else:
+                f.output = False
+                f.since = None
+        elif rising:  # counters
+            if fn == FilterFunction.COUNTER_UP:
+                f.value = wrap32(f.value + 1)
+            elif fn == FilterFunction.COUNTER_UP_TO_ZERO:
+                if f.value != 0:
                     f.value = wrap32(f.value + 1)
-                elif fn == FilterFunction.COUNTER_UP_TO_ZERO:
-                    if f.value != 0:
-                        f.value = wrap32(f.value + 1)
-                elif fn == FilterFunction.COUNTER_DOWN:
+            elif fn == FilterFunction.COUNTER_DOWN:
+                f.value = wrap32(f.value - 1)
+            elif fn == FilterFunction.COUNTER_DOWN_TO_ZERO:
+                if f.value != 0:
                     f.value = wrap32(f.value - 1)
-                elif fn == FilterFunction.COUNTER_DOWN_TO_ZERO:
-                    if f.value != 0:
-                        f.value = wrap32(f.value - 1)
 
 
 def _name(fn: int) -> str:

@@ -77,7 +77,7 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, StrictBool, field_validator, model_validator
 from pydantic_core import PydanticCustomError
 
-from axisline.devices.wago672.coupler import Coupler, pack
+from axisline.devices.wago672.coupler import Coupler
 from axisline.devices.wago672.errors import describe
 from axisline.devices.wago672.image import (
     IMAGE_SIZE,
@@ -113,6 +113,7 @@ def _bits(*flags: tuple[int, type]) -> dict[str, tuple[int, int]]:
 OUTPUT_BITS = _bits((OFFSET_C0, C0), (OFFSET_C1, C1), (OFFSET_C2, C2), (OFFSET_C3, C3))
 #: status bits of the input image: name -> (byte offset, mask)
 STATUS_BITS = _bits((OFFSET_C0, S0), (OFFSET_C1, S1), (OFFSET_C2, S2), (OFFSET_C3, S3))
+_S2_ERROR = int(S2.Error)
 
 _HINTS = {
     "stop1_n": "Stop1_N is Input1 (DI1), not an image bit: wire it in device.modules.inputs (Input1 = true); "
@@ -238,6 +239,9 @@ class PlcScript:
         self.failure: dict[str, Any] | None = None
         self.log: list[dict[str, Any]] = []  # one entry per step done: step, name, t_start, t_done
         self._start_cycle = 0
+        # each step's wait as (image offset, mask, level), checked every cycle
+        self._waits = [tuple((STATUS_BITS[n][0], STATUS_BITS[n][1], want) for n, want in step.wait.items()) for step in self.steps]
+        self._area: bytes | None = None  # the output area as written (None: changed since)
 
     @property
     def done(self) -> bool:
@@ -249,6 +253,7 @@ class PlcScript:
         return len(self.log)
 
     def _apply(self, step: PlcStep) -> None:
+        self._area = None
         image = self.images[step.module]
         for name in step.set:
             offset, mask = OUTPUT_BITS[name]
@@ -288,7 +293,9 @@ class PlcScript:
             if self.index < len(self.steps):
                 self._begin(cycle)
             break  # the next step's writes go out now; its condition is checked from the next cycle
-        self.coupler.write_registers(0, pack(b"".join(bytes(i) for i in self.images)))
+        if self._area is None:
+            self._area = b"".join(bytes(i) for i in self.images)
+        self.coupler.write_images(self._area)  # all registers from 0, as one FC16
 
     def _check(self, cycle: int) -> bool:
         """True when the running step is done; sets `failed` on a timeout or the module's Error."""
@@ -297,14 +304,17 @@ class PlcScript:
         elapsed = (cycle - self._start_cycle) * self.period
         if elapsed + 1e-9 < step.wait_s or cycle == self._start_cycle:
             return False
-        missing = [(n, want) for n, want in step.wait.items() if bool(inputs[STATUS_BITS[n][0]] & STATUS_BITS[n][1]) != want]
-        if not missing:
-            return True
-        if inputs[OFFSET_C2] & S2.Error and "Error" not in step.wait:
+        for offset, mask, want in self._waits[self.index]:
+            if (inputs[offset] & mask != 0) != want:
+                break
+        else:
+            return True  # every bit of `wait` has its level
+        if inputs[OFFSET_C2] & _S2_ERROR and "Error" not in step.wait:
             text = self.error_text(step.module)
             self._fail(step, f"the module reports Error (S2.7): {text} ({_status_text(inputs)})", f"module Error {text.split(':')[0]}")
             return False
         if elapsed - step.wait_s > step.timeout_s + 1e-9:
+            missing = [(n, want) for n, want in step.wait.items() if bool(inputs[STATUS_BITS[n][0]] & STATUS_BITS[n][1]) != want]
             want = ", ".join(f"{n} = {int(v)}" for n, v in step.wait.items())
             got = ", ".join(f"{n} = {int(not v)}" for n, v in missing)
             self._fail(step, f"waited {step.timeout_s:g} s (timeout_s) for {want}; the module shows {got} ({_status_text(inputs)})",
@@ -314,6 +324,7 @@ class PlcScript:
     def _fail(self, step: PlcStep, detail: str, reason: str) -> None:
         self.failed = f"PLC {step.label(self.index)} (device.plc[{self.index}]), module {step.module}: {detail}"
         self.failure = {"step": self.index + 1, "label": step.label(self.index), "reason": reason}
+        self._area = None
         stop = OUTPUT_BITS["Stop2_N"][1] | OUTPUT_BITS["Start"][1]
         for image in self.images:  # the fault reaction: brake with the STOP ramp, Enable kept
             image[OFFSET_C1] &= ~stop & 0xFF

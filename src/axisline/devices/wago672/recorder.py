@@ -46,6 +46,7 @@ if TYPE_CHECKING:
 __all__ = ["DataRecorder", "TRACE_SAMPLES"]
 
 TRACE_SAMPLES = 500  # "500 values are recorded each time"
+_TRACE_STORED = int(Bit.Trace_Stored)
 
 
 def _s32(value: int) -> int:
@@ -58,6 +59,7 @@ class DataRecorder:
 
     def __init__(self, device: Wago672, tables: TableManager | None = None) -> None:
         self.device = device
+        self._trigger_bits = device.bits.group((Bit.TRACE_TRIGGER, Bit.Trace_Armed))  # read every tick
         self.reset()
         device.tick_hooks.append(self.tick)
         if tables is not None:
@@ -93,8 +95,7 @@ class DataRecorder:
     def tick(self, cycle: int) -> None:
         dev = self.device
         try:
-            trigger = dev.bits.read(Bit.TRACE_TRIGGER)
-            armed = dev.bits.read(Bit.Trace_Armed)
+            trigger, armed = dev.bits.values(self._trigger_bits)
         except WagoError as e:
             dev.raise_error(e.code, e.text)
             return
@@ -114,4 +115,4 @@ class DataRecorder:
             if len(self._samples) >= TRACE_SAMPLES:
                 self.recording = False
                 self.stored = True
-        dev.bits.put(Bit.Trace_Stored, self.stored)
+        dev.bits.field[_TRACE_STORED] = 1 if self.stored else 0

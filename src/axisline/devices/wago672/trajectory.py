@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from axisline.devices.wago672.errors import WagoError
 from axisline.motion.profiles import Limits, Profile, State, plan, plan_velocity
@@ -224,8 +225,8 @@ def _compose(start: State, target: float, vmax: float, up: Ramp, down: Ramp, v_e
     sgn = math.copysign(1.0, d if d != 0.0 else (v0 if v0 != 0.0 else 1.0))
     if v0 != 0.0:
         # can the target be reached in the current direction of travel?
-        full = max(abs(v0), vmax)
-        bu, bd = _as_time(up, full), _as_time(down, full)
+        v_full = max(abs(v0), vmax)
+        bu, bd = _as_time(up, v_full), _as_time(down, v_full)
         direct = _change(bu, bd, start, v_end) if v_end * v0 >= 0.0 else _change(bu, bd, start, 0.0)
         if (v0 > 0.0) != (d > 0.0) or abs(_span(direct)) > abs(d):
             brake = _change(bu, bd, start, 0.0)
@@ -259,10 +260,10 @@ def _compose(start: State, target: float, vmax: float, up: Ramp, down: Ramp, v_e
             break
     vp = lo
     covered = sgn * _span(parts_for(vp)) if vp > 0.0 else 0.0
-    rest = sgn * d - covered
+    cruise = sgn * d - covered
     if vp <= 0.0:  # a move below the bisection's resolution: one constant-acceleration move
         return Chain([plan("trapezoid", start, State(target, vf), Limits(v=vmax, a=up.accel, d=down.accel))])
-    return _with_cruise(start, sgn * vp, rest / vp, up, down, vf)
+    return _with_cruise(start, sgn * vp, cruise / vp, up, down, vf)
 
 
 def _with_cruise(start: State, vp: float, cruise: float, up: Ramp, down: Ramp, vf: float) -> Chain:
@@ -298,37 +299,53 @@ class Feed:
 
     Positions are unwrapped microsteps in the axis frame; `steps_per_unit` is the axis'
     counts_per_unit (microsteps per axis user unit).
+
+    The module asks for the state of the same cycle several times a tick (the set point a
+    plan starts from, the watches, the axis' sample): `state` keeps the last few, until `run`
+    or `hold` (the only writers of profile, c0 and p_rest) change what is sampled.
     """
 
-    __slots__ = ("steps_per_unit", "period", "profile", "c0", "p_rest")
+    __slots__ = ("steps_per_unit", "period", "profile", "c0", "p_rest", "_states")
 
     def __init__(self, steps_per_unit: float, period: float) -> None:
         self.steps_per_unit = steps_per_unit
         self.period = period
-        self.profile = None
+        self.profile: Any = None  # a kernel Profile or a Chain of them (None: holding p_rest)
         self.c0 = 0
         self.p_rest = 0.0
+        self._states: dict[int, tuple[float, float, float, float]] = {}
 
     def run(self, profile, c0: int) -> None:
         """Sample `profile` from cycle c0 on (t = 0 at c0: the state the plan started from)."""
         self.profile = profile
         self.c0 = c0
+        self._states.clear()
 
     def hold(self, p: float) -> None:
         self.profile = None
         self.p_rest = p
+        self._states.clear()
 
     def t(self, cycle: int) -> float:
         return (cycle - self.c0) * self.period
 
     def state(self, cycle: int) -> tuple[float, float, float, float]:
         """(p, v, a, j) in microsteps at `cycle`."""
-        if self.profile is None:
-            return (self.p_rest, 0.0, 0.0, 0.0)
-        return self.profile.sample(self.t(cycle))
+        states = self._states
+        st = states.get(cycle)
+        if st is None:
+            if self.profile is None:
+                st = (self.p_rest, 0.0, 0.0, 0.0)
+            else:
+                st = self.profile.sample((cycle - self.c0) * self.period)
+            if len(states) >= 4:  # a tick looks at this cycle and the last one
+                states.clear()
+            states[cycle] = st
+        return st
 
     def ended(self, cycle: int) -> bool:
-        return self.profile is None or self.t(cycle) >= self.profile.duration
+        profile = self.profile
+        return profile is None or (cycle - self.c0) * self.period >= profile.duration  # t(cycle)
 
     def sample(self, cycle: int) -> tuple[float, float, float]:
         p, v, a, _ = self.state(cycle)
