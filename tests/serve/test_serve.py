@@ -220,3 +220,14 @@ def test_a_serial_protocol_write_is_logged_with_the_parameter_old_and_new(tmp_pa
     assert ok["accepted"] is True and ok["who"].startswith("serial-tcp 127.0.0.1:")
     assert {"what": "cutting_length", "old": 1000, "new": 900} in ok["changes"]
     assert refused["accepted"] is False and "no stored value changed" in refused["reason"]
+
+
+def test_only_the_endpoints_asked_for_are_made(tmp_path):
+    """Making an endpoint can be an act of the device: the CLM's Profibus image checks B008 and
+    faults 34 without a DP slave address. Without --modbus it is not made, and no fault comes."""
+    log = tmp_path / "events.jsonl"
+    proc, _ = start(str(ROOT / "examples" / "roll_feed_clm.toml"), "--serial-tcp", "127.0.0.1:0", "--http", "127.0.0.1:0",
+                    "--log", str(log))
+    time.sleep(0.5)
+    stop(proc)
+    assert not [e for e in events(log) if e["kind"] == "fault"]

@@ -86,12 +86,13 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
     requests_out.close()
     replies_in.close()
 
+    # only what the command line asked for: making an endpoint can be an act of the device
+    # (the CLM's Profibus image checks B008 and faults 34 without a DP slave address)
     targets: dict[str, Callable[[], Any]] = {}
     if device is not None:
-        offered = set(device.endpoints)
-        if "serial-tcp" in offered:
+        if spec.wanted.get("serial-tcp") is not None or opts.serial_pty:
             targets["byte"] = device.byte_endpoint
-        if "modbus" in offered:
+        if spec.wanted.get("modbus") is not None:
             targets["register"] = device.register_endpoint
             # the endpoints' refusals import it on first use: 20 ms (pymodbus) in a cycle's idle time
             import axisline.fieldbus.modbus  # noqa: F401
@@ -102,7 +103,8 @@ def serve_machine(m: Any, source: str, opts: ServeOptions, say: Callable[[str], 
 
         return MachineView(m, link.emit)
 
-    targets["hmi"] = view
+    if spec.wanted.get("http") is not None:
+        targets["hmi"] = view
     from .audit import Audit
 
     link = CycleLink(requests_in, replies_out, targets)
