@@ -10,6 +10,7 @@ and tests/test_decisions_doc.py fails when it is stale.
 from __future__ import annotations
 
 import ast
+import re
 import sys
 from pathlib import Path
 
@@ -21,6 +22,8 @@ _DEVICES = (
     ("WAGO 750-672 stepper module (issue 6)", "devices/wago672"),
     ("Rexroth CLM1.4 (issue 11)", "devices/clm"),
     # read as files, never imported: the layers above the devices keep their decisions here too
+    ("Motion kernel and scope (issue 18)", "motion"),
+    ("Kernel (issue 18)", "kernel"),
     ("Serving a machine and the web HMI (issue 17)", "serve"),
     ("Web HMI pages (issue 17)", "hmi"),
     ("Web HMI device views (issue 17)", "hmi/devices"),
@@ -31,7 +34,9 @@ _DEVICES = (
 
 def _decisions(path: Path) -> str | None:
     doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or ""
-    at = doc.find("Decision")
+    # the section starts a line ("Decisions (...):"); a mention inside a sentence is not it
+    found = re.search(r"(?m)^Decision", doc)
+    at = found.start() if found else doc.find("Decision")
     return doc[at:].strip() if at >= 0 else None
 
 
