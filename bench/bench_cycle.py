@@ -1,4 +1,6 @@
-"""Cycle cost: one axis in a move, and a 4-axis machine against real time at T = 1 ms."""
+"""Cycle cost: one axis in a move, and a 4-axis machine against real time at T = 1 ms; the
+scope's cost per axis and a 16-axis machine with it (issue 18). `python bench/bench_cycle.py
+scope` runs the scope part alone."""
 
 from __future__ import annotations
 
@@ -58,6 +60,7 @@ def bench_cycle() -> None:
             factors.append(sim / (time.perf_counter() - t0))
         print(f"  4 axes, T = 1 ms, scope {'on ' if trace else 'off'}: {statistics.median(factors):7.1f}x real time "
               f"(median of 5 runs of 10 s simulated; min {min(factors):.1f}x, max {max(factors):.1f}x)")
+    bench_scope()
 
 
 def _scope_record_us(n_axes: int, samples: int = 20000) -> float:
@@ -96,4 +99,7 @@ def bench_scope() -> None:
 if __name__ == "__main__":
     import sys
 
-    bench_scope() if sys.argv[1:] == ["scope"] else bench_cycle()
+    if sys.argv[1:] == ["scope"]:
+        bench_scope()
+    else:
+        bench_cycle()

@@ -20,8 +20,6 @@ import time
 import zlib
 from collections import deque
 from dataclasses import dataclass, field
-from functools import partial
-from operator import attrgetter
 from pathlib import Path
 from typing import Any, Callable, cast
 
@@ -35,6 +33,7 @@ from .motion.axis import Axis, AxisConfig, AxisState, BufferMode, Direction
 from .motion.camsync import CamFollower, CamState
 from .motion.gear import Gear, GearInPos
 from .motion.homing import DirectHoming, SwitchHoming
+from .scope_channels import make_trace
 from .sync_setup import SyncHandle, build_cam, build_master
 from .plant.drives import ANALOG_LIMIT_VOLTS, StepperDrive
 
@@ -190,7 +189,7 @@ class Machine:
         self.scheduler.add_task("faults", self._watch_faults, Stage.RECORD)
         self.trace: Trace | None = None
         if config.trace.enabled:
-            self.trace = self._make_trace()
+            self.trace = make_trace(self)  # scope_channels.py: the channels and their getters
             self.scheduler.add_task("scope", self.trace.record, Stage.RECORD)
 
     # -- construction ---------------------------------------------------------------
@@ -360,76 +359,6 @@ class Machine:
                 io.set_input(entry.extended, cylinder.extended)
         if self._io_used:  # an image without inputs and outputs samples nothing
             self.io.sample()
-
-    def _plant_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
-        out: dict[str, tuple[Callable[[], Any], str, type]] = {}
-        axis_units = {a.name: a.unit for a in self.config.axis}
-        first = next(iter(axis_units.values()), "units")
-        line_unit = first
-        if self.config.material is not None and self.config.material.unit is not None:
-            line_unit = self.config.material.unit
-        if self.material is not None:
-            mat = self.material
-            out["material.position"] = (lambda: mat.position, line_unit, float)
-            out["material.speed"] = (lambda: mat.velocity, f"{line_unit}/s", float)
-        for name, sensor in self.sensors.items():
-            out[f"{name}.state"] = (partial(_sensor_level, sensor), "", bool)
-        for name in self.config.io.inputs:
-            out[f"io.{name}"] = (partial(self.io.read, name), "", bool)
-        for name in self.config.io.outputs:
-            out[f"io.{name}"] = (partial(self.io.output, name), "", bool)
-        entries = {m.name: m for m in self.config.master}
-        for name, master in self.masters.items():
-            entry = entries.get(name)
-            unit = "units"
-            if entry is not None:
-                if entry.unit is not None:
-                    unit = entry.unit
-                elif entry.axis is not None:
-                    unit = axis_units.get(entry.axis, unit)
-                elif entry.kind == "wheel":
-                    unit = axis_units.get(entry.carrier, line_unit) if entry.carrier is not None else line_unit
-            out[f"{name}.position"] = (_getter(master, "position"), unit, float)
-            out[f"{name}.velocity"] = (_getter(master, "velocity"), f"{unit}/s", float)
-        return out
-
-    def _make_trace(self) -> Trace:
-        tc = self.config.trace
-        capacity = tc.capacity
-        if tc.mode == "linear":  # never allocate more than the longest run can fill
-            capacity = min(capacity, round(self.config.machine.duration / self.period) // tc.decimation + 1)
-        tr = Trace(capacity, decimation=tc.decimation, mode=tc.mode, period_us=self.clock.period_us)
-        available: dict[str, tuple[Callable[[], Any], str, type]] = {}
-        for name, u in self.units.items():
-            ax, dr, unit = u.axis, u.drive, u.config.unit
-            # attrgetter/partial are C calls: the scope samples dozens of channels per cycle
-            sig: dict[str, tuple[Callable[[], Any], str, type]] = {
-                "command_position": (_getter(ax, "command_position"), unit, float),
-                "actual_position": (_getter(ax, "actual_position"), unit, float),  # axis frame
-                "command_velocity": (_getter(ax, "command_velocity"), f"{unit}/s", float),
-                "actual_velocity": (_getter(dr, "velocity"), f"{unit}/s", float),
-                "command_acceleration": (_getter(ax, "command_acceleration"), f"{unit}/s^2", float),
-                "actual_acceleration": (_getter(dr, "acceleration"), f"{unit}/s^2", float),
-                "command_jerk": (_getter(ax, "command_jerk"), f"{unit}/s^3", float),
-                "following_error": (_getter(ax, "following_error"), unit, float),
-                "velocity_output": (_getter(u, "velocity_output"), f"{unit}/s", float),
-                "state": (partial(_state_code, ax), "", int),
-                "enabled": (_getter(dr, "enabled"), "", bool),
-            }
-            for k, v in sig.items():
-                available[f"{name}.{k}"] = v
-        available.update(self._plant_channels())
-        device_channels = getattr(self.device, "trace_channels", None)
-        if device_channels is not None:  # a personality's own signals ("fs701.line_speed", ...)
-            available.update(device_channels())
-        wanted = list(available) if tc.channels == "all" else tc.channels
-        unknown = [c for c in wanted if c not in available]
-        if unknown:
-            raise ConfigError(self.source or "<machine>", [f"trace.channels: unknown channel {c!r} (available: {', '.join(available)})" for c in unknown])
-        for c in wanted:
-            getter, unit, kind = available[c]
-            tr.add_channel(c, getter, unit=unit, kind=kind)
-        return tr
 
     def signal(self, wiring: bool | str) -> bool | Callable[[], bool]:
         """A device input as the machine file wires it: a constant, or a function reading a
@@ -634,21 +563,6 @@ class Machine:
         from .report.summary import run_summary
 
         return run_summary(self, result)
-
-
-def _getter(obj: Any, name: str) -> Callable[[], Any]:
-    return partial(attrgetter(name), obj)
-
-
-_STATE_CODE = {s: i for i, s in enumerate(AxisState)}  # traced as an int: 0 = DISABLED ...
-
-
-def _state_code(axis: Axis) -> int:
-    return _STATE_CODE[axis.state]
-
-
-def _sensor_level(sensor: Sensor) -> bool:
-    return bool(sensor.state)
 
 
 _SYNC_COMMANDS = ("gear_in", "gear_in_pos", "cam_in", "cam_out", "sync_out", "set_master_velocity")

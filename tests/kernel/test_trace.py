@@ -289,3 +289,214 @@ def test_failed_save_leaves_previous_file_intact(
         trace.save_npz(path)
     assert path.read_bytes() == good
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scope.npz"]
+
+
+# --- the row block (issue 18): samples reach the columns a block at a time ---------------------
+
+
+def reference_data(capacity: int, mode: str, decimation: int, cycles: range) -> dict[str, list]:
+    """What the scope must hold: the newest (ring) or first (linear) samples, by hand."""
+    taken = [c for i, c in enumerate(cycles) if i % decimation == 0]
+    kept = taken[-capacity:] if mode == "ring" else taken[:capacity]
+    return {"cycle": kept, "x": [c * 1.5 for c in kept]}
+
+
+@pytest.mark.parametrize(("capacity", "mode", "decimation", "n"), [
+    (1000, "linear", 1, 700),  # several blocks, a part block at the end
+    (300, "linear", 1, 700),  # full in the middle of a block
+    (300, "ring", 1, 700),  # wraps in the middle of a block
+    (100, "ring", 3, 1000),  # a block larger than the ring
+    (1, "ring", 1, 5),
+    (257, "ring", 2, 3000),
+])
+def test_reads_mid_block_see_every_sample_recorded(capacity: int, mode: str, decimation: int, n: int) -> None:
+    trace = Trace(capacity, decimation=decimation, mode=mode)  # type: ignore[arg-type]
+    signal = Signal()
+    trace.add_channel("x", signal)
+    for cycle in range(n):
+        signal.value = cycle * 1.5
+        trace.record(cycle)
+        if cycle % 97 == 0 or cycle == n - 1:  # reads at odd places inside blocks
+            want = reference_data(capacity, mode, decimation, range(cycle + 1))
+            data = trace.data()
+            assert data["cycle"].tolist() == want["cycle"]
+            assert data["x"].tolist() == want["x"]
+            assert data["t"].tolist() == [c / 1000 for c in want["cycle"]]
+            assert len(trace) == len(want["cycle"])
+
+
+def test_ring_wraps_inside_a_block() -> None:
+    trace = Trace(10, mode="ring")
+    signal = Signal()
+    trace.add_channel("x", signal)
+    fill(trace, range(27), signal)  # the block of 10 wraps; 27 samples: the 3rd ring pass
+    assert trace.data()["cycle"].tolist() == list(range(17, 27))
+    assert trace.stored == 27
+    assert trace.overflowed
+
+
+def test_several_channels_from_one_getter_keep_their_kinds_and_order() -> None:
+    trace = Trace(600, period_us=500)
+    state = {"v": 0.0, "n": 0, "on": False}
+    trace.add_channel("first", lambda: state["v"] * 2)
+    trace.add_channels(
+        ["speed", "counts", "ready"],
+        lambda: (state["v"], state["n"], state["on"]),
+        units=["mm/s", "inc", ""],
+        kinds=[float, int, bool],
+    )
+    trace.add_channel("last", lambda: state["n"], kind=int)
+    for cycle in range(520):
+        state.update(v=math.sin(cycle) * 1e3, n=2**40 + cycle, on=cycle % 3 == 0)
+        trace.record(cycle)
+    data = trace.data()
+    assert list(data) == ["t", "cycle", "first", "speed", "counts", "ready", "last"]
+    cycles = range(520)
+    assert data["speed"].tolist() == [math.sin(c) * 1e3 for c in cycles]
+    assert data["first"].tolist() == [math.sin(c) * 1e3 * 2 for c in cycles]
+    assert data["counts"].tolist() == [2**40 + c for c in cycles]  # int64: no float rounding
+    assert data["counts"].dtype == np.int64 and data["ready"].dtype == np.bool_
+    assert data["ready"].tolist() == [c % 3 == 0 for c in cycles]
+    assert data["last"].tolist() == [2**40 + c for c in cycles]
+    assert trace.units["counts"] == "inc" and trace.kind("ready") == "bool"
+
+
+# values of every type a getter may return, for each kind of channel
+ODD_VALUES = {
+    float: [1.25, -0.0, math.inf, -math.inf, 7, True, np.float32(0.1), np.float64(2.5), np.int64(-3), None,
+            2**70, 1e-310],
+    int: [5, -(2**63), 2**63 - 1, True, np.int64(9), np.int32(-4), 2.7, -2.7, np.float64(3.9), np.bool_(True)],
+    bool: [True, False, 0, 2, 0.0, 0.5, math.nan, np.bool_(False), np.float64(0.0), np.int64(-1), "", "x", None],
+}
+
+
+@pytest.mark.parametrize("kind", [float, int, bool])
+@pytest.mark.parametrize("grouped", [False, True])
+def test_block_stores_what_numpy_assignment_stores(kind: type, grouped: bool) -> None:
+    values = ODD_VALUES[kind]
+    expected = np.zeros(len(values), dtype={float: np.float64, int: np.int64, bool: np.bool_}[kind])
+    for i, v in enumerate(values):
+        expected[i] = v  # numpy's own conversion: what the scope stored before blocks
+    trace = Trace(len(values) + 1)
+    current: list = [None]
+    if grouped:
+        trace.add_channels(["a", "b"], lambda: (current[0], 1.0), kinds=[kind, float])
+    else:
+        trace.add_channel("a", lambda: current[0], kind=kind)
+    for cycle, v in enumerate(values):
+        current[0] = v
+        trace.record(cycle)
+    got = trace.data()["a"]
+    assert got.dtype == expected.dtype
+    assert got.tobytes() == expected.tobytes()  # bit for bit (-0.0, inf, nan included)
+
+
+def test_a_value_numpy_refuses_raises_in_its_cycle_and_is_not_stored() -> None:
+    trace = Trace(10)
+    current: list = [1]
+    trace.add_channel("n", lambda: current[0], kind=int)
+    trace.record(0)
+    current[0] = math.nan  # numpy: cannot convert float NaN to integer
+    with pytest.raises(ValueError):
+        trace.record(1)
+    current[0] = 3
+    trace.record(2)
+    assert trace.data()["n"].tolist() == [1, 3]
+    assert trace.data()["cycle"].tolist() == [0, 2]
+
+
+def test_a_getter_that_raises_stores_no_part_of_the_sample() -> None:
+    trace = Trace(10)
+    current: list = [0.0, False]
+
+    def row() -> tuple:
+        if current[1]:
+            raise RuntimeError("sensor gone")
+        return (current[0], current[0] + 1)
+
+    trace.add_channels(["a", "b"], row)
+    trace.record(0)
+    current[1] = True
+    with pytest.raises(RuntimeError, match="sensor gone"):
+        trace.record(1)
+    current[:] = [5.0, False]
+    trace.record(2)
+    data = trace.data()
+    assert data["cycle"].tolist() == [0, 2] and data["b"].tolist() == [1.0, 6.0]
+
+
+def test_a_getter_returning_the_wrong_count_is_named() -> None:
+    trace = Trace(10)
+    trace.add_channels(["a", "b", "c"], lambda: (1.0, 2.0))
+    with pytest.raises(ValueError, match=r"a, b, c.*2 values for 3 channels"):
+        trace.record(0)
+    assert len(trace) == 0
+    single = Trace(10)
+    single.add_channels(["a", "b"], lambda: 1.0)  # not a sequence
+    with pytest.raises(ValueError, match=r"a, b: the getter returned 1.0 for 2 channels"):
+        single.record(0)
+
+
+@pytest.mark.parametrize(("args", "match"), [
+    ((["a", "a"], lambda: (1, 2)), "already exists"),
+    ((["a", "t"], lambda: (1, 2)), "already exists"),
+    (([], lambda: ()), "no channel names"),
+    ((["a", "b"], "not callable"), "callable"),
+])
+def test_bad_channel_groups_are_refused_and_add_nothing(args: tuple, match: str) -> None:
+    trace = Trace(4)
+    with pytest.raises((ValueError, TypeError), match=match):
+        trace.add_channels(*args)
+    with pytest.raises(ValueError, match="kind"):
+        trace.add_channels(["p", "q"], lambda: (1, 2), kinds=[float, str])
+    with pytest.raises(ValueError, match="2 names but 1 units"):
+        trace.add_channels(["p", "q"], lambda: (1, 2), units=["mm"])
+    assert trace.channels == ()
+    trace.add_channels(["a", "b"], lambda: (1.0, 2.0))  # the names are still free
+    assert trace.channels == ("a", "b")
+
+
+# --- samples since n (the HMI's live scope) -----------------------------------------------------
+
+
+def test_since_returns_the_samples_from_n_on() -> None:
+    trace = Trace(1000)
+    signal = Signal()
+    trace.add_channel("x", signal)
+    trace.add_channel("y", lambda: -signal.value)
+    fill(trace, range(300), signal)
+    first, columns = trace.since(290, ["x"])
+    assert first == 290
+    assert list(columns) == ["t", "cycle", "x"]
+    assert columns["cycle"].tolist() == list(range(290, 300))
+    assert columns["x"].tolist() == [c * 1.5 for c in range(290, 300)]
+    assert trace.since(300)[1]["y"].tolist() == []  # nothing new yet
+    fill(trace, range(300, 303), signal)  # inside a block: flushed by the read
+    first, columns = trace.since(300)
+    assert (first, columns["y"].tolist()) == (300, [-450.0, -451.5, -453.0])
+    columns["x"][:] = 0.0  # a copy, not the live buffer
+    assert trace.since(300)[1]["x"].tolist() == [450.0, 451.5, 453.0]
+
+
+def test_since_starts_at_the_oldest_held_and_keeps_the_newest_limit() -> None:
+    trace = Trace(50, mode="ring")
+    signal = Signal()
+    trace.add_channel("x", signal)
+    fill(trace, range(120), signal)
+    assert trace.stored == 120
+    first, columns = trace.since(10)  # 10..69 were overwritten
+    assert first == 70 and columns["cycle"].tolist() == list(range(70, 120))
+    first, columns = trace.since(80, limit=5)
+    assert first == 115 and columns["cycle"].tolist() == list(range(115, 120))
+
+
+@pytest.mark.parametrize(("args", "match"), [
+    ((-1,), "first sample"),
+    ((0, ["nope"]), "unknown channel 'nope'"),
+    ((0, None, 0), "limit"),
+])
+def test_since_refuses_bad_requests(args: tuple, match: str) -> None:
+    trace = Trace(5)
+    trace.add_channel("x", Signal())
+    with pytest.raises(ValueError, match=match):
+        trace.since(*args)

@@ -24,6 +24,7 @@ _DEVICES = (
     # read as files, never imported: the layers above the devices keep their decisions here too
     ("Motion kernel and scope (issue 18)", "motion"),
     ("Kernel (issue 18)", "kernel"),
+    ("Scope channels (issue 18)", "scope_channels.py"),
     ("Serving a machine and the web HMI (issue 17)", "serve"),
     ("Web HMI pages (issue 17)", "hmi"),
     ("Web HMI device views (issue 17)", "hmi/devices"),
@@ -53,10 +54,11 @@ def render(package: Path | None = None) -> str:
     ]
     for title, name in _DEVICES:
         blocks = []
-        for path in sorted((root / name).glob("*.py")):
+        for path in [root / name] if name.endswith(".py") else sorted((root / name).glob("*.py")):
             text = _decisions(path)
             if text:
-                blocks += [f"#### `axisline/{name}/{path.name}`", "", text, ""]
+                shown = name if name.endswith(".py") else f"{name}/{path.name}"
+                blocks += [f"#### `axisline/{shown}`", "", text, ""]
         if blocks:
             out += [f"### {title}", ""] + blocks
     return "\n".join(out).rstrip() + "\n"

@@ -196,21 +196,19 @@ class MachineView:
                 raise HmiRefused(f"channels: unknown channel {c!r} (available: {', '.join(known)})")
         since = _count_arg(args, "since", 0, 0, None)
         limit = _count_arg(args, "limit", MAX_SAMPLES, 1, MAX_SAMPLES)
-        # the trace keeps its samples in preallocated arrays: sample n is at n % capacity
-        # (ring) or n (linear, which stops when full); `_stored` counts every sample taken
-        stored, cap = tr._stored, tr.capacity
-        oldest = max(0, stored - cap)
+        # sample n is the n-th the trace stored (Trace.stored counts every one, overwritten
+        # ones included); a ring keeps the newest `capacity`
+        stored = tr.stored
         if since > stored:  # a client from before the scope was re-armed: start anew
-            since = max(oldest, stored - limit)
-        start = max(since, oldest, stored - limit)  # decision 2: the newest `limit` samples
-        idx = np.arange(start, stored) % cap
+            since = stored - min(len(tr), limit)
+        start, columns = tr.since(since, channels, limit)  # decision 2: the newest `limit` samples
         units = tr.units
         return {
             "since": start,
             "next": stored,
             "skipped": start - since,
-            "t": tr._times[idx].tolist(),
-            "data": {c: _samples(tr._buffers[c][idx]) for c in channels},
+            "t": columns["t"].tolist(),
+            "data": {c: _samples(columns[c]) for c in channels},
             "units": {c: units.get(c, "") for c in channels},
         }
 
