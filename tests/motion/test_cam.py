@@ -80,6 +80,24 @@ def test_equidistant_lookup_equals_bisection() -> None:
         assert fast.last_point_passed(x) == general.last_point_passed(x)
 
 
+@pytest.mark.parametrize("equidistant", [True, False])
+def test_eval_with_acceleration_is_eval_and_set_point_acceleration_in_one_search(equidistant: bool) -> None:
+    # what a cam follower reads every cycle (COMPAX: position, gradient and the set points'
+    # acceleration) must be exactly the three separate evaluations, at the points, a hair either
+    # side, between them, at the cycle end and beyond the table on both sides
+    slave = [math.sin(0.37 * k) * 10.0 + 0.2 * k for k in range(41)]
+    table = PointTable.equidistant(slave, master_period=3.6)
+    if not equidistant:
+        table = PointTable(list(table.master), slave, equidistant=False)
+    xs = list(np.linspace(-0.5, 4.0, 901))
+    for m in table.master:
+        xs += [m, math.nextafter(m, -math.inf), math.nextafter(m, math.inf)]
+    for x in xs:
+        s, ds, dds = table.eval_with_acceleration(x)
+        assert (s, ds) == table.eval(x)[:2]
+        assert dds == table.set_point_acceleration(x)
+
+
 def test_equally_spaced_points_are_recognised_whatever_the_constructor() -> None:
     # a CSV or hand-built COMPAX table gets the O(1) lookup too
     table = PointTable([0.0, 90.0, 180.0, 270.0, 360.0], [0.0, 1.0, 0.0, 1.0, 0.0])

@@ -87,18 +87,18 @@ class MasterObserver:
         """One cycle: `delta` increments counted in it."""
         t = self.period
         a = self.acceleration
-        still, self._still = self._still, delta == 0
-        if still != self._still and abs(delta - (self.velocity + 0.5 * a * t) * t) > STEP_INCREMENTS:
+        v = self.velocity
+        still = self._still
+        self._still = now_still = delta == 0
+        self.counted = counted = self.counted + delta
+        if still != now_still and abs(delta - (v + 0.5 * a * t) * t) > STEP_INCREMENTS:
             # Decision 2: a start from or a stop to standstill in one cycle
-            self.counted += delta
-            self.position = self.counted
+            self.position = counted
             self.velocity = delta / t
             self.acceleration = 0.0
             return
-        self.counted += delta
-        p = self.position + (self.velocity + 0.5 * a * t) * t
-        v = self.velocity + a * t
-        e = self.counted - p
+        p = self.position + (v + 0.5 * a * t) * t
+        e = counted - p
         self.position = p + self._k1 * e
-        self.velocity = v + self._k2 * e
+        self.velocity = v + a * t + self._k2 * e
         self.acceleration = a + self._k3 * e

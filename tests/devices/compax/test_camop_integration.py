@@ -80,3 +80,24 @@ def test_p36_armed_by_vp_becomes_valid_at_the_curve_zero_point():
     assert axis.command_position == pytest.approx(360.0)
     run(op, axis, enc, 10, 64, cycle)
     assert axis.command_position == pytest.approx(360.0 + 2 * 14.0625)
+
+
+def test_setc_reads_the_valid_copy_as_it_is_after_each_vf():
+    # SETC selects the curve of the valid copy (curves.read_curve): a curve rewritten in the memory
+    # is seen only after VF, at once after it, and every SETC gives the operation a new curve object
+    # (programrun logs a curve transfer by it), also when the curve was prepared before
+    from axisline.devices.compax.curves import CurveRecord, write_curve
+
+    params, memory, axis, enc, inputs, op = setup()
+    op.setc(1)
+    first = op.curve
+    assert first.master_cycle == 360.0 and first.fractions == (0.0, 1.0)
+    write_curve(memory, CurveRecord(number=1, master_cycle=720.0, slave_cycle=360.0, set_points=[0.0, 0.5, 0.25]))
+    op.setc(1)
+    assert op.curve is not first and op.curve.master_cycle == 360.0  # not valid yet
+    memory.vf()
+    op.setc(1)
+    assert op.curve.master_cycle == 720.0 and op.curve.fractions == (0.0, 0.5, 0.25)
+    again = op.curve
+    op.setc(1)
+    assert op.curve is not again and op.curve.fractions == (0.0, 0.5, 0.25)

@@ -7,6 +7,7 @@ from fractions import Fraction
 import pytest
 
 from axisline.devices.compax import E_UNKNOWN, E_VALUE, CompaxError, UnknownNumberError
+from axisline.devices.compax.masterchain import DEFAULTS, valid_values
 from axisline.devices.compax.parameters import (
     AUX_VALENCES,
     EVENTS,
@@ -159,6 +160,38 @@ def test_immediate_parameters_p93_and_p210():
     params[93] = 1
     params[210] = 1
     assert (params[93], params[210]) == (1, 1) and params.pending() == {}
+
+
+def test_valid_values_is_the_live_table_the_cycle_reads():
+    # the cam operation reads params.valid_values[n] every 1 ms (no number check per read): it must
+    # show exactly the valid values, through writes, VP, RESETP, restore, and stay the same dict
+    params = Parameters()
+    table = params.valid_values
+    assert all(table[n] == params[n] for n in PARAMETERS)
+    params[93] = 1  # immediately valid
+    params[35] = 2.5  # valid with VP
+    assert table[93] == 1 and table[35] == 1.0
+    params.make_valid("VP")
+    assert table[35] == 2.5
+    snap = params.snapshot()
+    params[35] = 3.0
+    params.make_valid("VP")
+    params.restore(snap)
+    assert params.valid_values is table and table[35] == 2.5
+    params.resetp()
+    assert params.valid_values is table and table[35] == 1.0 and table[93] == PARAMETERS[93].default
+    assert snap.valid_values is not table and snap.valid_values[35] == 2.5
+
+
+def test_the_cycle_reads_a_parameter_mapping_with_the_manuals_defaults():
+    # a parameter object without a table of valid values (a test rig's dict) is read through
+    # params[n], missing numbers as the manual's defaults (masterchain.DEFAULTS)
+    params = {35: 2.0}
+    table = valid_values(params)
+    assert table[35] == 2.0 and table[98] == DEFAULTS[98] and table[188] == 0
+    params[35] = 3.0
+    assert table[35] == 3.0
+    assert valid_values(Parameters()) is not None and isinstance(valid_values(Parameters()), dict)
 
 
 def test_vc_parameters_need_vc_not_vp():

@@ -147,6 +147,11 @@ def test_startup_program_waits_for_the_power_stage_then_couples_and_sets_the_out
     assert s["program"] == {"lines": 3, "next_line": None, "done": True, "errors": []}
     assert s["state"] == "synchronous" and s["curve"] == 1 and s["status"]["S43"] == 1.0
     assert json.dumps(m.summary(m.run(0.001)))  # the whole summary is JSON
+    # the io outputs follow O16 off again (they are written in the cycle an output changes)
+    dev.op.stop()
+    m.run(0.01)
+    assert not dev.op.output(16) and m.io.output("sync") is False
+    assert m.io.output("warn") is dev.op.output(15)
 
 
 def test_a_wrong_startup_line_stops_the_program_and_fails_the_run():

@@ -384,6 +384,9 @@ class CamMemory:
         if delivery:
             self._delivery_state()
         self._valid = list(self._ram)
+        #: numbers the states of the valid copy: changed by every VF (only VF changes it), so a
+        #: reader may keep what it derived from a curve until this number changes
+        self.valid_version = 0
         self._modified: list[int] = []
         self._overflow = False
 
@@ -512,6 +515,7 @@ class CamMemory:
             result = VfResult(False, tuple(self._modified), VF_FULL_DURATION_S * n / SIZE)
         self._modified.clear()
         self._overflow = False
+        self.valid_version += 1
         return result
 
     @property
@@ -523,6 +527,7 @@ class CamMemory:
         other = CamMemory.__new__(CamMemory)
         other._ram = list(self._ram)
         other._valid = list(self._valid)
+        other.valid_version = self.valid_version
         other._modified = list(self._modified)
         other._overflow = self._overflow
         return other
@@ -581,6 +586,7 @@ class CamMemory:
         memory = cls.__new__(cls)
         memory._ram = [0, *words]
         memory._valid = list(memory._ram)
+        memory.valid_version = 0
         memory._modified = []
         memory._overflow = False
         return memory

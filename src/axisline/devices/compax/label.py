@@ -82,6 +82,7 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
+from axisline.devices.compax.camio import CamState
 from axisline.devices.compax.masterchain import param
 from axisline.motion.registration import Correction, phase, wrap
 
@@ -157,7 +158,8 @@ class LabelSync:
         if self.mode == 1:
             return bool(op.chain.counting)
         if self.mode == 2:
-            return op.state.name in ("SYNC", "WAIT_DECOUPLE")
+            state = op.state
+            return state is CamState.SYNC or state is CamState.WAIT_DECOUPLE
         return False
 
     # ------------------------------------------------------------------ acceptance (L7)
@@ -251,8 +253,9 @@ class LabelSync:
             return self.op._f(u)[0]
         return u
 
-    def measure(self, u_prev: float, wraps: int, edges: Any) -> None:
-        """The label input of the cycle that ended now (called after the master update)."""
+    def measure(self, u_prev: float, wraps: int, edges: Any, u: float | None = None) -> None:
+        """The label input of the cycle that ended now (called after the master update; `u`: the
+        master position now, ``op.chain.fraction``, when the caller has it)."""
         op = self.op
         if op is None or op.curve is None:
             return
@@ -265,8 +268,12 @@ class LabelSync:
             self._track_level(edges)
             return
         self._was_active = True
-        f0 = self._frame(u_prev)
-        f1 = self._frame(op.chain.fraction)
+        if u is None:
+            u = op.chain.fraction
+        if self.mode == 2:  # `_frame`, inline
+            f0, f1 = op._f(u_prev)[0], op._f(u)[0]
+        else:
+            f0, f1 = u_prev, u
         if not self._have_X:
             self._X = f0
             self._have_X = True

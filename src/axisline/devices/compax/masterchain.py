@@ -100,6 +100,7 @@ __all__ = [
     "MasterChain",
     "param",
     "scaled_master_cycle",
+    "valid_values",
 ]
 
 #: §2.5: "M_T · 4 · P143 / P98 ≤ 4 000 000".
@@ -147,6 +148,31 @@ def param(params: Any, number: int) -> Any:
     return value
 
 
+class _WithDefaults:
+    """``table[n]``: the valid value of a parameter object without a plain table of valid values
+    (a mapping holding only some numbers), or the manual's default (`param`)."""
+
+    __slots__ = ("_params",)
+
+    def __init__(self, params: Any) -> None:
+        self._params = params
+
+    def __getitem__(self, number: int) -> Any:
+        return param(self._params, number)
+
+
+def valid_values(params: Any) -> Any:
+    """What the 1 ms cycle reads the valid parameter values from: ``table[n]``.
+
+    A `parameters.Parameters` keeps them as a plain dict (``valid_values``, every number present,
+    each value checked when it was written), read without a check per read; any other parameter
+    object is read through `param` (its ``params[n]``, or the default)."""
+    table = getattr(params, "valid_values", None)
+    if isinstance(table, dict):
+        return table
+    return _WithDefaults(params)
+
+
 def jump_free_p35(p35_old: float, v_ext: float, p98: float) -> float:
     """P35 for a jump-free switch from the encoder channel to the internal time base (§2.15):
     "P35_new = P35_old · V_ext / P98" with V_ext the external master speed in master units per
@@ -177,6 +203,7 @@ class MasterChain:
         if not (isinstance(period, (int, float)) and math.isfinite(period) and period > 0):
             raise ValueError(f"period must be a number of seconds > 0, got {period!r}")
         self.params = params
+        self._pv = valid_values(params)  # the valid values, read every cycle
         self.encoder = encoder
         self.period = float(period)
         self._ms_per_cycle = self.period * 1000.0
@@ -185,6 +212,7 @@ class MasterChain:
         self._mt_i = 16384
         self._mt_f = 0.0
         self._mt = 16384.0
+        self.scaled_cycle = 16384.0  # M_T* in increments (read-only outside; = _mt)
         # position in the cycle: _pi + _pf increments, 0 <= _pi + _pf < M_T*
         self._pi = 0
         self._pf = 0.0
@@ -200,6 +228,8 @@ class MasterChain:
         self._preset: float | None = None  # SETM preset, fraction of the cycle
         # source
         self._raw: int | None = None
+        self._delta_of: Any = None  # the encoder whose `delta` is in _delta_fn
+        self._delta_fn: Any = None
         self._tb_start: int | None = None  # cycle at which the time base was enabled
         self._tb_pos = 0.0
         # P35
@@ -210,7 +240,7 @@ class MasterChain:
         self._p35_n = 0  # cycles since the start of the running ramp
         self._inject = 0.0
         # per-cycle results
-        self.delta = 0.0  # scaled increments counted this cycle (incl. injected correction)
+        self.delta: int | float = 0.0  # scaled increments counted this cycle (incl. injected correction)
         self.velocity = 0.0  # scaled increments / s
         self.acceleration = 0.0
         self.wraps = 0
@@ -224,17 +254,12 @@ class MasterChain:
     @property
     def internal(self) -> bool:
         """P30 units digit 1: internal time base."""
-        return int(param(self.params, 30)) % 10 == 1
-
-    @property
-    def scaled_cycle(self) -> float:
-        """M_T* in increments."""
-        return self._mt
+        return int(self._pv[30]) % 10 == 1
 
     def _checked(self, master_cycle: float) -> Fraction:
         """M_T* of a master cycle, or the SETC error of the value-range rule (decision MC7)."""
-        p98 = param(self.params, 98)
-        p143 = param(self.params, 143)
+        p98 = self._pv[98]
+        p143 = self._pv[143]
         mt = scaled_master_cycle(master_cycle, p143, p98)
         if not 0 < mt <= MAX_SCALED_CYCLE:
             raise CompaxError(
@@ -251,6 +276,7 @@ class MasterChain:
         self._mt_i = int(whole)
         self._mt_f = float(mt - whole)
         self._mt = float(mt)
+        self.scaled_cycle = self._mt
         self._reduce()
 
     def check_cycle(self, master_cycle: float) -> None:
@@ -361,8 +387,9 @@ class MasterChain:
     # ------------------------------------------------------------------ per cycle
 
     def _mode(self) -> int:
-        mode = int(param(self.params, 31))
-        if self.internal and mode in (1, 2):
+        pv = self._pv
+        mode = int(pv[31])
+        if mode in (1, 2) and int(pv[30]) % 10 == 1:
             return 0  # §2.10 "P31="2" is handled ... with internal time base ... like P31="0"" (MC6 for 1)
         return mode
 
@@ -371,13 +398,16 @@ class MasterChain:
         self._p35_target = target
         self._p35_from = self.p35
         self._p35_n = 0
-        if float(param(self.params, 179)) <= 1.0:
+        if float(self._pv[179]) <= 1.0:
             self.p35 = target  # "at 0 (or 1): for a jump-like adjustment of P35"
 
     def _p35_update(self) -> None:
-        target = float(param(self.params, 35))
+        target = float(self._pv[35])
+        if target == self._p35_target and self.p35 == target:
+            self._p35_pending = None  # no new value and no ramp running: nothing to do
+            return
         if target != self._p35_target:
-            if int(param(self.params, 30)) // 10 == 1 and self.synchronous:
+            if int(self._pv[30]) // 10 == 1 and self.synchronous:
                 self._p35_pending = target  # §2.16: taken at the end of the master cycle
             else:
                 self._p35_pending = None
@@ -388,12 +418,12 @@ class MasterChain:
         if self.p35 != self._p35_target:
             # closed form from the start of the ramp: the slope is exact and the end is the target
             self._p35_n += 1
-            step = self._p35_n * self._ms_per_cycle / float(param(self.params, 179))
+            step = self._p35_n * self._ms_per_cycle / float(self._pv[179])
             self.p35 = self._p35_target if step >= abs(diff) else self._p35_from + math.copysign(step, diff)
 
-    def _source_delta(self, cycle: int, enabled_now: bool, latch: int | None) -> float:
+    def _source_delta(self, cycle: int, enabled_now: bool, latch: int | None) -> int | float:
         """Master increments of this cycle before P35 (only while counting)."""
-        if self.internal:
+        if int(self._pv[30]) % 10 == 1:  # the internal time base
             if not self.counting:
                 self._tb_start = None
                 self._tb_pos = 0.0
@@ -402,8 +432,8 @@ class MasterChain:
                 self._tb_start = cycle  # the P39 ramp starts at the enabling (§2.15)
                 self._tb_pos = 0.0
             t = (cycle - self._tb_start) * self.period
-            rate = 100.0 * 4.0 * float(param(self.params, 143)) / 60.0  # increments / s before P35
-            ramp = float(param(self.params, 39)) / 1000.0
+            rate = 100.0 * 4.0 * float(self._pv[143]) / 60.0  # increments / s before P35
+            ramp = float(self._pv[39]) / 1000.0
             if ramp > 0.0 and t < ramp:
                 pos = 0.5 * rate * t * t / ramp
             else:
@@ -421,8 +451,12 @@ class MasterChain:
             return 0
         if enabled_now:
             prev = latch if latch is not None else raw
-        delta_fn = getattr(enc, "delta", None)
-        return delta_fn(raw, prev) if callable(delta_fn) else raw - prev
+        if enc is not self._delta_of:  # the encoder's wrap-aware difference, looked up once per encoder
+            self._delta_of = enc
+            delta_fn = getattr(enc, "delta", None)
+            self._delta_fn = delta_fn if callable(delta_fn) else None
+        delta_fn = self._delta_fn
+        return delta_fn(raw, prev) if delta_fn is not None else raw - prev
 
     def update(
         self,
@@ -482,21 +516,26 @@ class MasterChain:
                     self.counting = True
                     latch = i16_latch
         enabled_now = self.counting and not was_counting
-        if enabled_now and self._preset is not None and int(param(self.params, 31)) != 9:
+        if enabled_now and self._preset is not None and int(self._pv[31]) != 9:
             self._set_fraction(self._preset)  # MC3: preset at the enabling
         d_src = self._source_delta(cycle, enabled_now, latch)
         self.encoder_frequency = d_src / self._ms_per_cycle
         self._p35_update()
         p35 = self.p35
+        d: int | float  # whole increments stay an int (exact, drift-free)
         if p35 == 1.0:
             d = d_src
         elif p35 == int(p35) and isinstance(d_src, int):
             d = d_src * int(p35)
         else:
             d = d_src * p35
-        d_total = d + self._inject if self._inject else d
+        d_total: int | float = d + self._inject if self._inject else d
         self._inject = 0.0
-        self._advance(d_total)
+        if type(d_total) is int:  # whole increments (the encoder at P35 = 1): `_advance` inline
+            self._pi += d_total
+            self._count_i += d_total
+        else:
+            self._advance(d_total)
         v = d_total / self.period
         self.acceleration = (v - self.velocity) / self.period
         self.velocity = v
@@ -505,10 +544,14 @@ class MasterChain:
             self._sign = 0
         elif v < 0.0:
             self._sign = 1
-        wraps = self._reduce()
+        pi = self._pi
+        if 0 <= pi < self._mt_i or (pi == self._mt_i and self._pf < self._mt_f):
+            wraps = 0  # still inside the cycle (`_reduce`'s first test, inline)
+        else:
+            wraps = self._reduce()
         if wraps > 0:
             if self._one_cycle:
-                if int(param(self.params, 31)) == 3 and i16:
+                if int(self._pv[31]) == 3 and i16:
                     pass  # "If I16 is still "1" at the end of the master cycle, automatic triggering occurs."
                 else:
                     self.counting = False
@@ -522,7 +565,7 @@ class MasterChain:
 
     # ------------------------------------------------------------------ integer arithmetic
 
-    def _advance(self, d: float) -> None:
+    def _advance(self, d: int | float) -> None:
         if type(d) is int:
             self._pi += d
             self._count_i += d

@@ -23,18 +23,19 @@
     label_set_point = 0.25             # curve parameters: fractions of M_T (S_T)
     label_window = 0.1
 
-What happens each 1 ms cycle (`tick`, LOGIC stage, before the slave samples its set point):
-the start-up list advances (a line waits while the slave is positioning, while a LOOP is
-active unless P210 = 1, and a LOOP / POSR CAM / POSA / POSR waits for the power stage), the
-program memory's interpreter runs one set (`programrun.ProgramRun`: started by START, over
-the interface or in the start-up list; its errors are faults of the run), the label sensor's
-sub-cycle edges of the last plant step go to the label synchronisation (I14 wired to a
-print-mark sensor or switch; an io input or a constant is read as a level), I16 wired to a
-sensor latches the master encoder at its rising edge (interpolated in the cycle), the cam
-operation runs (`camop.CamOperation.tick`), and O1 ... O16 are written to the io outputs
-wired to them. A `report.CycleLog` keeps one record per master cycle (label error before /
-after correction, correction, tracking error, O15 / O16 changes): `summary()["cycles"]`,
-and `write_report(dir)` writes them as JSON with a plot.
+What happens each 1 ms cycle (`tick`, LOGIC stage, before the slave samples its set point;
+after the start-up list, `devicecycle.DeviceCycle`): the start-up list advances (a line waits
+while the slave is positioning, while a LOOP is active unless P210 = 1, and a LOOP / POSR CAM /
+POSA / POSR waits for the power stage), the program memory's interpreter runs one set
+(`programrun.ProgramRun`: started by START, over the interface or in the start-up list; its
+errors are faults of the run), the label sensor's sub-cycle edges of the last plant step go to
+the label synchronisation (I14 wired to a print-mark sensor or switch; an io input or a
+constant is read as a level), I16 wired to a sensor latches the master encoder at its rising
+edge (interpolated in the cycle), the cam operation runs (`camop.CamOperation.tick`), and O1
+... O16 are written to the io outputs wired to them (in the cycle one of them changes: nothing
+else writes those outputs). A `report.CycleLog` keeps one record per master cycle (label error
+before / after correction, correction, tracking error, O15 / O16 changes):
+`summary()["cycles"]`, and `write_report(dir)` writes them as JSON with a plot.
 
 The slave belongs to COMPAX: job steps must not command it; its power follows I12 (wired
 to true unless given). The master encoder's scaling P98 / P143 is derived from the master
@@ -69,6 +70,11 @@ Decisions (each has a test in tests/devices/compax/test_personality.py):
   the scope channels compax.A0 / compax.A1 and in `summary()["analog"]`, in volts at the X22
   scaling (gain 100: 127 ≙ 9.92 V, -128 ≙ -10 V), 0 V without a selected curve or without
   analogue aux values. Test: test_analog_aux_channels_in_the_scope_and_the_summary.
+* P2 The io outputs wired to O1 ... O16 (issue 18: "skip work nothing reads") are written in the
+  cycle the device's output image changes, not every cycle: device.outputs makes them the
+  device's (no job step or other device writes them; the HMI forces, which is a layer above the
+  written value), so the io image is the same. Test:
+  test_startup_program_waits_for_the_power_stage_then_couples_and_sets_the_outputs.
 """
 
 from __future__ import annotations
@@ -92,6 +98,7 @@ from axisline.devices.compax.curves import (
     write_curve,
 )
 from axisline.devices.compax.config import CompaxConfig, CurveEntry, derive_master_scaling
+from axisline.devices.compax.devicecycle import DeviceCycle
 from axisline.devices.compax.endpoint import (
     CompaxEndpoint,
     LiveStatus,
@@ -184,9 +191,6 @@ class CompaxPersonality(Personality):
         self.unit = unit
         self.axis = unit.axis
         self.label = LabelSync()
-        self._accepted: list[tuple[float, float]] = []  # labels of the cycle (S51, S52)
-        self.label.on_label = lambda s51, s52: self._accepted.append((s51, s52))
-        self._corrected = 0.0  # label.corrected when the log last took it
         wiring: dict[str, Any] = {"I12": True}
         wiring.update({name: self._signal(value) for name, value in config.inputs.items()})
         self.wiring = wiring
@@ -198,16 +202,17 @@ class CompaxPersonality(Personality):
                                      program=self._programs)
         self._i14 = self._sensor(config.inputs.get("I14"))
         self._i16 = self._sensor(config.inputs.get("I16"))
-        self._edge_seen: dict[str, float] = {}
-        self._outputs = tuple((int(name[1:]), io_name) for name, io_name in config.outputs.items())
         self.program = list(config.startup)
         self.pc = 0  # next line of the start-up program
         self._wait_until: int | None = None
         self.program_errors: list[dict[str, Any]] = []
         self.log = CycleLog()
         self._first = True
-        self._op_error = 0
-        self._enc_prev: int | None = None
+        outputs = tuple((int(name[1:]), io_name) for name, io_name in config.outputs.items())
+        self.device_cycle = DeviceCycle(self.op, self.run, self.log, self.label, self.period,
+                                        i14=self._i14, i16=self._i16, encoder=self.encoder, io=machine.io,
+                                        outputs=outputs, status=self.status)
+        self.label.on_label = lambda s51, s52: self.device_cycle.accepted.append((s51, s52))
 
     # ------------------------------------------------------------------ construction
 
@@ -351,19 +356,6 @@ class CompaxPersonality(Personality):
 
     # ------------------------------------------------------------------ per cycle
 
-    def _new_edges(self, sensor: Any) -> list[Any]:
-        """Edges of the sensor not handed over yet (those of the last plant step)."""
-        last = self._edge_seen.get(sensor.name, -math.inf)
-        out = []
-        for e in reversed(sensor.edges):
-            if e.time <= last:
-                break
-            out.append(e)
-        if out:
-            out.reverse()
-            self._edge_seen[sensor.name] = out[-1].time
-        return out
-
     def trace_channels(self) -> dict[str, tuple[Callable[[], Any], str, type]]:
         """compax.* scope channels (device.trace = false: none); the machine adds them when the
         scope records all channels, or those named in trace.channels."""
@@ -388,62 +380,12 @@ class CompaxPersonality(Personality):
         return analog_volts(self.op.analog(channel))
 
     def tick(self, cycle: int) -> None:
-        op = self.op
-        t = cycle * self.period
         if self._first:
             self._first = False
-            self.log.start(t)
-        self._run_program(cycle)
-        self.run.tick(cycle)  # the program memory's interpreter, before the cam operation
-        fresh: dict[str, list[Any]] = {}
-        for sensor in (self._i14, self._i16):
-            if sensor is not None and sensor.name not in fresh:  # I14 and I16 may be one sensor
-                fresh[sensor.name] = self._new_edges(sensor)
-        i14_edges = None
-        if self._i14 is not None:
-            i14_edges = [(e.fraction, e.rising) for e in fresh[self._i14.name]]
-        latch = None
-        enc = self.encoder
-        raw = int(enc.counts) if enc is not None else None
-        if self._i16 is not None:
-            edges = fresh[self._i16.name]
-            if raw is not None and self._enc_prev is not None:
-                rising = next((e for e in edges if e.rising), None)
-                if rising is not None:
-                    delta = getattr(enc, "delta", None)
-                    moved = delta(raw, self._enc_prev) if callable(delta) else raw - self._enc_prev
-                    latch = self._enc_prev + round(rising.fraction * moved)
-        self._enc_prev = raw
-        op.tick(cycle, i14_edges=i14_edges, i16_latch=latch)
-        self.run.watch(cycle)
-        # records of the cycle
-        log = self.log
-        label = self.label
-        curve = op.curve
-        if self._accepted:
-            length = 0.0
-            if curve is not None:
-                length = curve.slave_cycle * op.p36 if label.mode == 2 else curve.master_cycle
-            for s51, s52 in self._accepted:
-                log.label(t, s51, s52, length)
-            self._accepted.clear()
-        if label.corrected != self._corrected:
-            log.correction(1000.0 * (label.corrected - self._corrected))
-            self._corrected = label.corrected
-        log.tracking(self.axis.following_error)
-        log.outputs(t, op.output(15), op.output(16))
-        wraps = op.chain.wraps if curve is not None else 0
-        for _ in range(max(0, wraps)):
-            log.wrap(t, curve=int(op.status(43)), state=op.state.value, label_ok=label.o14 if label.active else True,
-                     synchronous=op.output(16))
-        if op.last_error != self._op_error:
-            self._op_error = op.last_error
-            if op.last_error:
-                self.status[30] = op.last_error
-        if self._outputs:
-            io = self.machine.io
-            for n, io_name in self._outputs:
-                io.write(io_name, op.output(n))
+            self.log.start(cycle * self.period)
+        if self.pc < len(self.program):
+            self._run_program(cycle)
+        self.device_cycle.tick(cycle)  # the program memory, the cam operation, the log, the outputs
 
     # ------------------------------------------------------------------ start-up program
 

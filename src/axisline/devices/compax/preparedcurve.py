@@ -3,10 +3,10 @@
 `PreparedCurve(record)` takes a curve record (curves.CurveRecord, or anything with its fields)
 and holds what the cam operation reads every cycle: the set points as fractions of S_T in an
 equidistant `PointTable` over one master cycle (the fraction 0x7FFFFF read as exactly 1.0,
-the full slave cycle), the digital aux functions as an `AuxTrack`, the two analogue channels,
-and the curve parameters M_E, M_S, M_A, M_B, S_0, the label and correction positions.
-A record that no cam can run (fewer than 2 set points, M_T <= 0, a master position outside
-0 ... 1) is refused with E103.
+the full slave cycle), the digital aux functions as an `AuxTrack`, the two analogue channels
+(None: none, or 0 everywhere), and the curve parameters M_E, M_S, M_A, M_B, S_0, the label
+and correction positions. A record that no cam can run (fewer than 2 set points, M_T <= 0,
+a master position outside 0 ... 1) is refused with E103.
 """
 
 from __future__ import annotations
@@ -68,8 +68,9 @@ class PreparedCurve:
         self.table = PointTable.equidistant(fr, 1.0, max_points=max(len(fr), 2))
         aux = getattr(record, "aux_digital", None)
         self.aux = AuxTrack(list(aux)) if aux is not None and len(aux) == len(fr) else None
+        # an analogue channel of zeros everywhere is None: 0 V without a table to search every cycle
         self.analog = tuple(
-            PointTable.equidistant(ch, 1.0, max_points=max(len(ch), 2)) if ch is not None else None
+            PointTable.equidistant(ch, 1.0, max_points=max(len(ch), 2)) if ch is not None and any(ch) else None
             for ch in _analog_channels(record, len(fr))
         )
         self.me = float(getattr(record, "coupling", 0.0) or 0.0)

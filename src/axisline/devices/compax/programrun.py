@@ -63,7 +63,7 @@ import math
 from typing import Any, Callable
 
 from axisline.devices.compax import E_CURVE_NOT_PRESENT, E_NOT_AVAILABLE, E_TRACKING, CompaxError
-from axisline.devices.compax.masterchain import param
+from axisline.devices.compax.masterchain import valid_values
 from axisline.devices.compax.program import MOTION_KINDS, Command, Kind, ProgramMemory
 from axisline.motion.axis import AxisState
 
@@ -82,6 +82,7 @@ class ProgramRun:
         self.program = program
         self.op = op
         self.params = params
+        self._pv = valid_values(params)  # the valid values, read every cycle
         self.axis = op.axis
         self.period = float(op.period)
         self.on_error = on_error
@@ -158,12 +159,12 @@ class ProgramRun:
         return bool(op.loop_active or self.axis.state in _MOVING or op.datum_travel_pending)
 
     def _parallel(self) -> bool:
-        return int(param(self.params, 210)) == 1
+        return int(self._pv[210]) == 1
 
     def tick(self, cycle: int) -> None:
         """One cycle, before the cam operation's: run at most one set (decision 1)."""
         self._cycle = cycle
-        if not self.running:
+        if self.state != "running":
             return
         if self.axis.state is AxisState.ERROR_STOP:  # decision 5
             code = self.op.last_error or E_TRACKING
@@ -297,7 +298,10 @@ class ProgramRun:
         the same curve."""
         op = self.op
         active, curve = bool(op.loop_active), op.curve
-        was_active, was_curve = self._seen
+        seen = self._seen
+        if seen[0] == active and seen[1] is curve:
+            return  # nothing changed (the cycle of a running or an idle cam operation)
+        was_active, was_curve = seen
         self._seen = (active, curve)
         if (active == was_active and (not active or curve is was_curve)) or len(self.log) >= MAX_LOG:
             return
