@@ -340,6 +340,7 @@ def test_raster_by_edge_or_by_level():
     I0.01.7 once, digit 1 the level every cycle it is 1."""
     from fractions import Fraction
 
+    from axisline.devices.clm.cutoff import ClockMaster
     from axisline.devices.clm.cutoff_raster import RasterWatch
 
     for level, expected in ((False, [None, Fraction(2), None, None]), (True, [None, Fraction(2), Fraction(3), None])):
@@ -348,7 +349,7 @@ def test_raster_by_edge_or_by_level():
         got = []
         for point, bit in ((1, 0), (2, 1), (3, 1), (4, 0)):
             r.set("I0.01.7", bit)
-            got.append(watch.seen(Fraction(point)))
+            got.append(watch.seen((ClockMaster(), point * 1000, 0.0)))  # the spot of material point `point`
         assert got == expected
 
 

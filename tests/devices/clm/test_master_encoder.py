@@ -119,3 +119,20 @@ def test_aeo_acceleration_follows_the_line(tmp_path):
 def test_master_encoder_1_must_be_a_wheel(tmp_path):
     with pytest.raises(ConfigError, match="master_encoder_1"):
         machine(tmp_path, "0000 JMP 0000\n", [(0.0, 100.0)], kind="virtual")
+
+
+def test_travel_is_the_float_of_the_exact_scale(tmp_path):
+    """Decisions 1, 2: the wheel's travel in a cycle (what the measuring wheel mode adds, L4615) is
+    float(counts x scale) exactly - worked out from the scale's numerator and denominator, which
+    follow FAK 5 as the scale does (a FAK 5 changes it from the next read on)."""
+    m = machine(tmp_path, "0000 WAI 00.100\n0001 FAK 5 1.234567\n0002 JMP 0002\n", [(0.0, 300.0)], {"C002": "0199.99999"})
+    me = m.device.rt.master_encoder
+    run(m, 0.05)
+    before = me.scale
+    assert before == Fraction(19999999, 100000) / 5000
+    for n in (1, -1, 7, 12345, -987654321, 2**40 + 3):
+        assert me.travel(n) == float(n * before)
+    run(m, 0.5)
+    assert me.scale == before * Fraction(1234567, 10**6)
+    for n in (1, -1, 7, 12345, -987654321, 2**40 + 3):
+        assert me.travel(n) == float(n * me.scale)

@@ -263,3 +263,23 @@ def test_srp_x_1_and_rmi_without_offset_are_check_warnings():
     assert ("N0000", "warning") in found and ("N0200", "warning") in found
     clean, _ = read_program_text("0000 SRP 1 1 0 V600 M2.02\n0001 JST 0001\n0200 RMI 1 0 I1.01.7\n0201 PSI 1 +000015.500 500\n0202 RMI 1 1 I1.01.7\n0203 JMP 0200\n")
     assert not [f for f in check_program(clean) if f.code == "0A"]
+
+
+def test_srp_end_of_search_is_compared_exactly():
+    """SRP (L2683-2686): the search ends when the axis has moved more than the end of search
+    (variable +4) from where the positioning started - compared in exact IU, so a float rounding
+    of the difference never ends a search early or late: 500.1 - 0.1 is 500.0 as floats, but the
+    float 500.1 is 2.3e-14 above 500.1, so the axis is past an end of 500."""
+    from fractions import Fraction
+    from types import SimpleNamespace
+
+    from axisline.devices.clm.registration import _beyond
+
+    def watch(actual: float, start: Fraction) -> SimpleNamespace:
+        return SimpleNamespace(axis=SimpleNamespace(actual_position=actual), start=start, start_of=None, start_f=0.0)
+
+    assert abs(500.1 - 0.1) == 500.0  # what a float comparison would see
+    assert _beyond(watch(500.1, Fraction(1, 10)), 500_000_000)
+    assert not _beyond(watch(500.1, Fraction(1, 10)), 500_000_001)
+    assert not _beyond(watch(-499.9, Fraction(1, 10)), 500_000_000)  # 2.3e-14 less than 500 back (-500.0 as floats)
+    assert _beyond(watch(-600.0, Fraction(1, 10)), 500_000_000) and not _beyond(watch(100.0, Fraction(1, 10)), 500_000_000)

@@ -149,6 +149,11 @@ from .slave import Follower
 
 __all__ = ["ClmAxis", "DRIVE_OUTPUTS", "BRAKE_DELAY_S"]
 
+
+def _bit_place(op: Operand) -> tuple[int, int]:
+    at, shift, _ = ProcessImage.locate(op)
+    return at, 1 << shift
+
 _MILLI = 1000  # program lengths are 1/1000 IU
 _MILLIONTH = 1_000_000  # FAK f.ffffff
 
@@ -174,6 +179,8 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         self.nc_cycle_s = float(nc_cycle_s)
         self.loop = ClmLoop(self.axis, machine.period)
         self._enable_out, self._brake_out = DRIVE_OUTPUTS[number]
+        # (byte, bit mask) of the two outputs written every cycle (axisdrive._outputs)
+        self._enable_bit, self._brake_bit = (_bit_place(op) for op in DRIVE_OUTPUTS[number])
         self._brake_cycles = math.ceil(BRAKE_DELAY_S / self.nc_cycle_s - 1e-9)
         self._drive_on = False
         self._on_cycles = 0
@@ -209,6 +216,7 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         self._vmax = num("06", "maximum_velocity")
         self._vjog = float(num("07", "jog_velocity"))
         self._a08 = num("08", "acceleration")
+        self._ramps: dict[int, float] = {}  # per mille -> IU/s^2 of Ax08 (worked out once each, `_ramp`)
         self._ax09 = (int(num("09", "acceleration")), int(num("09", "deceleration")))
         self._jerk_time = self._round_jerk_time(float(num("10", "jerk_constant")))
         kv = num("11", "kv_factor")
@@ -221,6 +229,9 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         self.threshold = float(p27["switching_threshold"])
         self._ax28_out: Operand = p28["position_window_output"]
         self._ax28 = float(p28["position_window"])
+        # where the three outputs are, None where not programmed (00.00.0): written every cycle
+        self._ax14_place, self._ax27_place, self._ax28_place = (
+            None if op.unset else ProcessImage.locate(op) for op in (self._ax14_out, self._ax27_out, self._ax28_out))
         self._min = num("03", "min_travel_limit")
         self._max = num("04", "max_travel_limit")
         self._min_f, self._max_f = float(self._min), float(self._max)
@@ -301,7 +312,10 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
         return self._ramp(self._ax09[0])
 
     def _ramp(self, per_mille: int) -> float:
-        return float(self._a08 if per_mille == 0 else self._a08 * per_mille / 1000)
+        ramp = self._ramps.get(per_mille)
+        if ramp is None:  # (asked every cycle by the flying cutoff; Ax08 changes only in `configure`)
+            ramp = self._ramps[per_mille] = float(self._a08 if per_mille == 0 else self._a08 * per_mille / 1000)
+        return ramp
 
     def _jerk(self) -> float | None:
         t = self._jerk_time
@@ -501,9 +515,10 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     def motion_done(self) -> bool:
         """The set point has reached its target: nothing running, kept or waiting."""
         ax = self.axis
-        if self._following:  # slave: the own part has ended (the following goes on)
+        f = self.follower
+        if f is not None and f.attached:  # (_following) slave: the own part has ended (the following goes on)
             return (self._con is None and not self._jog and not self._kept and not self._blocked and not self._braking
-                    and self.follower.own_done)  # type: ignore[union-attr]
+                    and f.own_done)
         return (self._con is None and not self._jog and not self._kept and not self._blocked and not self._braking
                 and ax.motion_ended and ax.command_velocity == 0.0)
 
@@ -515,9 +530,8 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     def _at_target(self, window: float) -> bool:
         if not (self._drive_on and self.motion_done):
             return False
-        if self._following:  # slave: the own part's set point at its target (slave.py 7)
-            f = self.follower
-            assert f is not None
+        f = self.follower
+        if f is not None and f.attached:  # (_following) slave: the own part's set point at its target (slave.py 7)
             return self._tf is None or abs(self._tf - f.u) <= window
         goal = self._tf if self._tf is not None else self.axis.command_position
         return abs(goal - self.axis.actual_position) <= window
@@ -538,7 +552,7 @@ class ClmAxis(WheelAxis, OpenFeedRoll, StopAndJog, DriveMonitoring, AxisReferenc
     @property
     def exact_target(self) -> Fraction | None:
         """The programmed target in exact IU (lengths x FAK are summed without rounding)."""
-        return self._target
+        return self._tx  # (= _target, read every cycle by restart.tick)
 
     @property
     def actual_position(self) -> float:

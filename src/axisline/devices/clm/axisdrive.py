@@ -6,7 +6,10 @@
 The mixin holds what the axis does every cycle whatever it was commanded: the Drive Enable and
 Brake outputs (spec §6.3), the kernel axis' power, the Ax14 lag / runaway monitoring, the travel
 limits in Automatic, and the outputs Ax14 / Ax27 / Ax28. Its decisions are numbered with the
-axis' (axis.py decisions 4, 5, 13-15).
+axis' (axis.py decisions 4, 5, 13-15). The axis' other per-cycle parts follow from here, only
+when the axis has them: the open feed roll (Ax30 programmed, feedroll.py) and the measuring
+wheel (Ax00 mode 3 / 4, measuring_wheel.py) - one call per cycle, not a chain of overrides.
+The output bits it writes every cycle are located once (per configuration), not per write.
 """
 
 from __future__ import annotations
@@ -44,6 +47,15 @@ class DriveMonitoring:
     override: Any
     _con: float | None
     _speed: float
+    _enable_bit: tuple[int, int]
+    _brake_bit: tuple[int, int]
+    _homing_proc: Any
+    _ax30_in: Any  # feedroll.OpenFeedRoll: Ax30's input, None when not programmed
+    wheel: Any  # measuring_wheel.WheelAxis: the WheelMode of an Ax00 mode 3 / 4 axis, else None
+    _homing_inputs: bool
+    _ax14_place: tuple[int, int, int] | None  # (byte, shift, mask) of a programmed output
+    _ax27_place: tuple[int, int, int] | None
+    _ax28_place: tuple[int, int, int] | None
 
     # ------------------------------------------------------------------ per NC cycle
 
@@ -72,12 +84,18 @@ class DriveMonitoring:
         elif self._braking and ax.motion_ended and ax.command_velocity == 0.0:
             self._braking = False
             ax.halt()  # the kernel's state: STANDSTILL
-        fault = self._homing_tick(mode)
+        # (axisref: nothing to do without a homing running or a homing input to watch)
+        fault = self._homing_tick(mode) if self._homing_proc is not None or self._homing_inputs else None
         if fault is None and not self._fault:
             fault = self._find_fault(mode, enable_input)
         if fault is not None:
             self.fault_stop()
         self._outputs()
+        # then Ax30 (feedroll.py) and the measuring wheel (measuring_wheel.py), when the axis has them
+        if self._ax30_in is not None:
+            self._feed_roll_tick()
+        if self.wheel is not None:
+            fault = self._wheel_tick(mode, fault)
         return fault
 
     def _find_fault(self, mode: str, enable_input: bool) -> ClmError | None:
@@ -157,18 +175,27 @@ class DriveMonitoring:
         if signals.active:  # Ax29 / Ax32 (feed_signals.py)
             signals.tick(self)
         img = self.image
+        data = img.data
         on = self._drive_on
-        img.set(self._enable_out, int(on))
-        img.set(self._brake_out, int(on and self._on_cycles >= self._brake_cycles))
-        if not self._ax27_out.unset:  # (an output not programmed, 00.00.0, costs nothing)
-            img.set(self._ax27_out, int(self.in_position))
-        if not self._ax28_out.unset:
-            img.set(self._ax28_out, int(self._at_target(self._ax28)))
-        if not self._ax14_out.unset:
+        at, bit = self._enable_bit
+        data[at] = data[at] | bit if on else data[at] & ~bit
+        at, bit = self._brake_bit
+        data[at] = data[at] | bit if on and self._on_cycles >= self._brake_cycles else data[at] & ~bit
+        place = self._ax27_place
+        if place is not None:  # (an output not programmed, 00.00.0, costs nothing)
+            at, shift, _ = place
+            data[at] = data[at] | 1 << shift if self.in_position else data[at] & ~(1 << shift)
+        place = self._ax28_place
+        if place is not None:
+            at, shift, _ = place
+            data[at] = data[at] | 1 << shift if self._at_target(self._ax28) else data[at] & ~(1 << shift)
+        place = self._ax14_place
+        if place is not None:
             kind = self.loop.excess if on else NONE
             mode14 = self._monitor_mode
             silent = (kind == LAG and mode14 in (1, 2)) or (kind == RUNAWAY and mode14 in (1, 3))
-            img.set(self._ax14_out, int(silent))
+            at, shift, _ = place
+            data[at] = data[at] | 1 << shift if silent else data[at] & ~(1 << shift)
         if self.follower is not None:  # M1.x0.0 "Axis x synchronous" (spec §4.6)
             img.set(Operand("M", 1, self.number * 10, 0), int(self.follower.synchronous))
 

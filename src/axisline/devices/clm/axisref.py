@@ -56,6 +56,10 @@ class AxisReferences:
         self._homing_sign = -1 if p24["search_direction"] == "-" else 1
         self._homing_per_mille = int(p24.number("search_velocity"))
         self._homing_type = int(p24.number("homing_type"))
+        # what `_homing_tick` looks at every cycle: the Homing input, option 5's passive reference
+        self._homing_input_used = not self._homing_in.unset
+        self._passive = self._homing_type == 4 and not self._home_switch.unset
+        self._homing_inputs = self._passive or self._homing_input_used
         self._ax25 = _f(params.get(a + "25").number("homing_offset"))
         self._homing_proc: Any = None
         self._homing_input_was = 1  # a rising edge needs a 0 first
@@ -229,9 +233,9 @@ class AxisReferences:
         """The Homing input's rising edge in Manual; completion / failure of a running homing;
         option 5's passive reference."""
         err = None
-        if self._homing_type == 4 and not self._home_switch.unset:
+        if self._passive:
             self._passive_homing(mode)
-        if not self._homing_in.unset:
+        if self._homing_input_used:
             now = self.image.get(self._homing_in)
             if now and not self._homing_input_was and mode == "manual" and self._homing_proc is None and not self._fault:
                 try:

@@ -94,7 +94,7 @@ from typing import TYPE_CHECKING, Any
 from axisline.motion.gear import Gear, GearInPos, GearInPosError
 
 from .cutoff_inputs import CutoffInputs
-from .cutoff_raster import RasterWatch
+from .cutoff_raster import RasterWatch, Spot
 from .cutoff_reverse import ReverseOptimisation
 from .errors import ClmError, axis_fault
 from .material_length import LengthCounters
@@ -125,6 +125,7 @@ class WheelMaster:
         self.scale = abs(scale)  # IU per count (Fraction)
         self._num, self._den = self.scale.numerator, self.scale.denominator
         self.counts_per_unit = float(1 / self.scale) if self.scale else 1.0
+        self._scale_f = float(self.scale)  # (the velocity's factor, read every cycle)
         self._origin = int(encoder.master.counts)  # (the encoder's own origin is its power on)
         self._base = int(encoder.counts) * self._sign
         self.shift = 0  # counts added by the no-material function (C008, decision 10)
@@ -138,8 +139,8 @@ class WheelMaster:
         return self._base + (int(self.encoder.master.counts) - self._origin) * self._sign
 
     @property
-    def counts(self) -> int:
-        return self.wheel_counts + self.shift
+    def counts(self) -> int:  # (wheel_counts + shift in one call: the gear reads it every cycle)
+        return self._base + (int(self.encoder.master.counts) - self._origin) * self._sign + self.shift
 
     @property
     def position(self) -> float:
@@ -150,6 +151,10 @@ class WheelMaster:
     @property
     def exact_position(self) -> Fraction:
         return self.counts * self.scale
+
+    def exact_at(self, counts: int) -> Fraction:
+        """The exact position (IU) at `counts` (a spot of an earlier cycle, cutoff_raster)."""
+        return counts * self.scale
 
     def record(self) -> None:
         """Once per NC cycle: the counts for C001's average (decision 12)."""
@@ -164,14 +169,14 @@ class WheelMaster:
         if ring is not None and len(ring) > 1:
             return float((ring[-1] - ring[0]) * self.scale) / ((len(ring) - 1) * self._cycle_s)
         m = self.encoder.master
-        return float(m.velocity) * float(m.counts_per_unit) * float(self.scale) * self._sign
+        return float(m.velocity) * float(m.counts_per_unit) * self._scale_f * self._sign
 
     @property
     def acceleration(self) -> float:
         if self.override is not None:
             return 0.0
         m = self.encoder.master
-        return float(m.acceleration) * float(m.counts_per_unit) * float(self.scale) * self._sign
+        return float(m.acceleration) * float(m.counts_per_unit) * self._scale_f * self._sign
 
 
 class ClockMaster:
@@ -205,12 +210,16 @@ class ClockMaster:
     def exact_position(self) -> Fraction:
         return Fraction(self.counts, 1000)
 
+    def exact_at(self, counts: int) -> Fraction:
+        return Fraction(counts, 1000)
+
 
 class FlyingCutoff(CutoffInputs):
     """The flying cutoff of axis 1; see the module docstring (the input functions: cutoff_inputs)."""
 
     def __init__(self, rt: Any) -> None:
         self.rt = rt
+        self.axis = rt.axes[1]  # the carriage: CLM axis 1 (the same object for the runtime's life)
         params = rt.memory.parameters
         self.tool_width = Fraction(str(params.get("A141").number("tool_width")))
         a138 = params.get("A138")
@@ -226,6 +235,8 @@ class FlyingCutoff(CutoffInputs):
         self.target: Fraction | None = None  # ... of the cut point of the running length
         self.length: Fraction | None = None  # the running length (with the tool width)
         self.programmed: Fraction | None = None  # ... as programmed (the report's target)
+        self._target_of: Fraction | None = None  # the target `_target_f` is the float of
+        self._target_f = 0.0
         self.counters = LengthCounters()  # material and product length (material_length.py)
         self._counts: int | None = None
         self.max_lag = 0.0  # |lag| over the synchronous phase (IU), for the cut report
@@ -251,20 +262,19 @@ class FlyingCutoff(CutoffInputs):
 
     # -- the pieces ---------------------------------------------------------------------------
 
-    @property
-    def axis(self) -> Any:
-        return self.rt.axes[1]
-
     def _master(self) -> Any:
         if self.clock is not None:
             return self.clock  # test mode (decision 11)
         me = self.rt.master_encoder
-        if me is None or not me.scale:
+        if me is None:
             return None
+        scale = me.scale
         master = self.master
-        if master is not None and master.encoder is me and me.scale is master.source_scale:
-            return master  # (the scale object stays while C000-C002 and FAK 5 do)
-        if master is None or master.encoder is not me or abs(me.scale) != master.scale:
+        if master is not None and scale is master.source_scale and master.encoder is me:
+            return master  # (the scale object stays while C000-C002 and FAK 5 do; never 0 here)
+        if not scale:
+            return None
+        if master is None or master.encoder is not me or abs(scale) != master.scale:
             old = self.master
             self.master = WheelMaster(me, self._averaging, self.rt.nc_cycle_s)
             if old is not None and old.encoder is me:
@@ -277,6 +287,14 @@ class FlyingCutoff(CutoffInputs):
         if m is None:
             return None
         return m.exact_position - Fraction(self.axis.actual_position)
+
+    def spot(self) -> Spot | None:
+        """What the material point now is made of, kept as it is read (the exact Fraction is
+        worked out only for a cycle that has a raster, cutoff_raster.point_of)."""
+        m = self._master()
+        if m is None:
+            return None
+        return m, m.counts, self.axis.axis.actual_position  # (the kernel axis' own, as material_point reads it)
 
     # -- per cycle ----------------------------------------------------------------------------
 
@@ -301,13 +319,15 @@ class FlyingCutoff(CutoffInputs):
         if mode == "manual" and self._zero_input is not None and self.rt.read_bit(self._zero_input):
             self.start_at_zero = True
         self.tick_inputs(mode)  # cutoff_inputs.py
-        self._no_material()
+        if self._nm_input is not None:
+            self._no_material()
         if self._averaging and self.clock is None:
             master = self._master()
             if master is not None:
                 master.record()
         self._raster_tick()  # cutoff_raster.py
-        self.reverse.tick(self)  # cutoff_reverse.py
+        if self.reverse.active:
+            self.reverse.tick(self)  # cutoff_reverse.py
 
     def _no_material(self) -> None:
         """C008 (decision 10): while its input is on, the material runs at the variable's speed."""
@@ -328,7 +348,7 @@ class FlyingCutoff(CutoffInputs):
 
     def _raster_tick(self) -> None:
         """Raster 1 from the de-synchronization to the synchronization (cutoff_raster 2, 3)."""
-        r = self.raster.seen(self.material_point())
+        r = self.raster.seen(self.spot())
         if self.state == SYNC or not self.rt.modes.running:
             return
         waiting = self.rt.tasks[0].wait == "cutoff"
@@ -408,14 +428,16 @@ class FlyingCutoff(CutoffInputs):
 
     # -- commands -------------------------------------------------------------------------------
 
-    def lml(self, task: NcTask, number: int, length: Fraction, wait_for_raster: bool = False) -> bool:
+    def lml(self, task: NcTask, number: int, length: Fraction | None, wait_for_raster: bool = False) -> bool:
         """LML (decisions 1-5, 9; LMK / LMR: cutoff_raster.py): True when the carriage is
-        synchronous with the cut point."""
+        synchronous with the cut point. `length` is read when the instruction is reached (it may
+        be None on the cycles the task waits on it)."""
         if task.wait is None:
             if self.state == SYNC:
                 raise ClmError("35", f"Missing EOS Cmd: the length instruction {number:04d} is reached while the carriage "
                                      "is still synchronous (the processing program has no EOS, L1908)")
             self.length_instruction = number
+            assert length is not None
             self.programmed = length
             self.length = length + self.tool_width
             if self.last_cut is None:
@@ -485,13 +507,16 @@ class FlyingCutoff(CutoffInputs):
         if v <= 0.0:
             return  # the material stands (or runs back): nothing to synchronize with
         accel = float(clm.acceleration)
-        vmax = float(clm.maximum_velocity)
         s0 = float(clm.command_position)
         s_min = s0 + v * v / (2.0 * accel)
-        assert self.target is not None
-        togo = float(self.target) + s_min - master.position
+        target = self.target
+        assert target is not None
+        if target is not self._target_of:  # (asked every cycle until the plan: one float per target)
+            self._target_of, self._target_f = target, float(target)
+        togo = self._target_f + s_min - master.position
         if not (now or replan) and togo > 2.0 * (s_min - s0) + _PLAN_LEAD_CYCLES * v * self.rt.nc_cycle_s:
             return
+        vmax = float(clm.maximum_velocity)
         num, den = Gear.counts_ratio(1, Fraction(1) / master.scale, clm.axis.config.counts_per_unit)
 
         def gear_for(s_sync: float) -> GearInPos:

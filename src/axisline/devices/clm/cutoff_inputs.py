@@ -75,6 +75,7 @@ class CutoffInputs:
 
         self.crop_length = Fraction(str(a142.number("crop_cut_length")))
         self._crop_in = _op(a142["crop_cut_input"])
+        self._edge_inputs = any(op is not None for op in (self._immediate_in, self._inhibit_in, self._crop_in, self._rapid_in, self._reverse_in))
         self.inhibited = False
         self.reverse_held = False
         self.retract_fault: str | None = None  # "3B" / "3C": the retract program's EOS faults
@@ -99,11 +100,14 @@ class CutoffInputs:
     # -- per cycle ------------------------------------------------------------------------------
 
     def tick_inputs(self, mode: str) -> None:
-        immediate = self._edge(self._immediate_in)
-        inhibit = self._edge(self._inhibit_in)
-        crop = self._edge(self._crop_in)
-        rapid = self._edge(self._rapid_in)
-        reverse = self._edge(self._reverse_in)
+        if self._edge_inputs:
+            immediate = self._edge(self._immediate_in)
+            inhibit = self._edge(self._inhibit_in)
+            crop = self._edge(self._crop_in)
+            rapid = self._edge(self._rapid_in)
+            reverse = self._edge(self._reverse_in)
+        else:  # none of the five inputs is programmed (00.00.0): nothing to read
+            immediate = inhibit = crop = rapid = reverse = False
         if mode == "manual":
             self._set_inhibit(False)  # decision 3: Manual cancels it
             modes = self.rt.modes

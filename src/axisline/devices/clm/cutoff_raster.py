@@ -42,6 +42,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from .errors import ClmError
+from .fields import Var
 from .operands import Operand
 
 if TYPE_CHECKING:
@@ -52,33 +53,47 @@ __all__ = ["RasterWatch", "op_lml", "op_lmk", "op_lmr", "RASTER_1"]
 RASTER_1 = Operand("I", 0, 1, 7)
 
 
+#: The material point under the tool as read in one NC cycle: (the cutoff's master, its counts,
+#: the carriage's actual position); `point_of` makes it the exact Fraction (IU).
+Spot = tuple[Any, int, float]
+
+
+def point_of(spot: Spot) -> Fraction:
+    """master - carriage, exact (cutoff.FlyingCutoff.material_point of the spot's cycle)."""
+    master, counts, actual = spot
+    return master.exact_at(counts) - Fraction(actual)
+
+
 class RasterWatch:
-    """Raster 1 as the flying cutoff sees it: `seen()` returns the material point of a raster of
-    this cycle (decision 1), else None."""
+    """Raster 1 as the flying cutoff sees it: `seen(spot)` returns the material point of a raster
+    of this cycle (decision 1), else None. It is given the cycle's spot, not the point: the
+    exact Fraction is worked out only in a cycle that has a raster (not in every cycle)."""
 
     def __init__(self, rt: Any, level: bool) -> None:
         self.rt = rt
         self.level = level
+        self._at, self._shift, _ = rt.image.locate(RASTER_1)
         self._before = rt.read_bit(RASTER_1)
-        self._previous_point: Fraction | None = None
+        self._previous_spot: Spot | None = None
         self.last: Fraction | None = None  # the point of the last raster (LMR's reference)
 
-    def seen(self, point: Fraction | None) -> Fraction | None:
+    def seen(self, spot: Spot | None) -> Fraction | None:
         rt = self.rt
-        previous, self._previous_point = self._previous_point, point
+        previous, self._previous_spot = self._previous_spot, spot
         sensor = rt.registration.raster_sensors.get((0, 1, 7))
         if sensor is not None and not self.level:
             for edge in sensor.edges:  # the edges of the plant cycle just ended
-                if edge.rising and point is not None and previous is not None:
-                    return previous + (point - previous) * Fraction(edge.fraction)
+                if edge.rising and spot is not None and previous is not None:
+                    point, before = point_of(spot), point_of(previous)
+                    return before + (point - before) * Fraction(edge.fraction)
             return None
-        now = rt.read_bit(RASTER_1)
+        now = rt.image.data[self._at] >> self._shift & 1  # (Raster 1 is an input: no Logic Task owns it)
         before, self._before = self._before, now
-        if point is None:
+        if spot is None:
             return None
         if self.level:
-            return point if now else None
-        return point if (now and not before) else None
+            return point_of(spot) if now else None
+        return point_of(spot) if (now and not before) else None
 
 
 def _length(rt: Any, ins: Any, index: int) -> Fraction:
@@ -91,10 +106,17 @@ def _part_length(rt: Any, task: NcTask, ins: Any, line: str, raster: Callable[[]
     cutoff = rt.cutoff
     if cutoff is None:
         raise ClmError("0A", f"{ins.mnemonic} needs axis 1 in flying cutoff (A100 mode 5{line})")
-    rt.axis(ins, 0)
+    axis = ins.values[0]
+    if task.wait is None or isinstance(axis, Var) or int(axis) not in rt.modes.enabled_axes:  # type: ignore[call-overload]
+        rt.axis(ins, 0)  # (its checks; waiting on a constant axis that stays enabled, they hold)
     if task.wait is None:
         cutoff.raster_mode = raster()  # (None: LML, no raster)
-    return task.pc + 1 if cutoff.lml(task, ins.number, _length(rt, ins, 1), wait_for_raster=wait_for_raster) else None
+        length: Fraction | None = _length(rt, ins, 1)
+    elif isinstance(ins.values[1], Var):  # waiting: a variable is still checked every cycle (32)
+        length = _length(rt, ins, 1)
+    else:
+        length = None  # waiting on a constant: the length was taken when the instruction was reached
+    return task.pc + 1 if cutoff.lml(task, ins.number, length, wait_for_raster=wait_for_raster) else None
 
 
 def op_lml(rt: Any, task: NcTask, ins: Any) -> int | None:

@@ -61,12 +61,12 @@ class OpenFeedRoll:
         if self.feed_roll_open:
             self._set_open(False)
 
-    def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> Any:
-        """The drive's cycle (axisdrive.py), then Ax30 (decisions 1-3)."""
-        fault = super().tick(mode, enable_input, estop_ok)  # type: ignore[misc]
+    def _feed_roll_tick(self) -> None:
+        """After the drive's cycle (axisdrive.py, which calls it when Ax30 has an input): Ax30
+        (decisions 1-3)."""
         inp = self._ax30_in
         if inp is None:
-            return fault
+            return
         want = bool(self.image.get(inp)) and self._drive_on
         if want and not self.feed_roll_open and self.in_position:  # type: ignore[attr-defined]
             self._set_open(True)
@@ -80,7 +80,6 @@ class OpenFeedRoll:
             ax.power(True)
         if self._ax30_out is not None:
             self.image.set(self._ax30_out, int(self.feed_roll_open))
-        return fault
 
     def _set_open(self, on: bool) -> None:
         self.feed_roll_open = on

@@ -88,6 +88,10 @@ class MasterEncoder:
         self._key: tuple[Any, ...] | None = None
         self._param_cache: tuple[Any, int, tuple[int, int, Fraction]] | None = None
         self._scale = Fraction(0)
+        self._num, self._den = 0, 1  # the scale's numerator and denominator
+        self._seen_params: Any = None  # what `scale` was last worked out from
+        self._seen_version = -1
+        self._seen_factor: Any = None
         axis = rt.axes.get(number)  # the measuring wheel of axis `number` (L4228)
         attach = getattr(axis, "attach_wheel", None)
         if attach is not None:
@@ -123,6 +127,13 @@ class MasterEncoder:
     def scale(self) -> Fraction:
         """IU per count: C002 x FAK 5 / (4 x C000), signed by C001's direction (decisions 1-3);
         C006 / (4 x C004), signed by C005, for master encoder 2."""
+        # read several times a cycle: its inputs (the parameter set and its version, FAK 5) are
+        # compared first, the scale is worked out again only after one of them changed
+        rt = self.rt
+        p = rt.memory.parameters
+        if p is self._seen_params and p.version == self._seen_version and rt.master_factor == self._seen_factor:
+            return self._scale
+        self._seen_params, self._seen_version, self._seen_factor = p, p.version, rt.master_factor
         graduation, direction, feed = self._params()
         factor = self.factor
         key = (graduation, direction, feed, factor)
@@ -130,7 +141,14 @@ class MasterEncoder:
             self._key = key
             sign = -1 if direction == 1 else 1
             self._scale = Fraction(0) if graduation <= 0 else sign * feed * Fraction(factor, _MILLION) / (4 * graduation)
+            self._num, self._den = self._scale.numerator, self._scale.denominator
         return self._scale
+
+    def travel(self, counts: int) -> float:
+        """float(counts x scale) in IU, correctly rounded (an int true division: the same float
+        as the Fraction's, without one per cycle)."""
+        self.scale  # (brought up to date after a parameter or FAK 5 change)
+        return counts * self._num / self._den
 
     @property
     def counts_per_revolution(self) -> int:

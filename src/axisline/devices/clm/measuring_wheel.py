@@ -88,6 +88,7 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 from .errors import ClmError, axis_fault, serial_code
+from .image import ProcessImage
 from .operands import Operand
 
 if TYPE_CHECKING:
@@ -97,6 +98,7 @@ if TYPE_CHECKING:
 __all__ = ["FeedLengths", "WheelAxis", "WheelMode", "install", "op_fun", "status_09"]
 
 _SCALE = 1_000_000  # variables in millionths
+image_place = ProcessImage.locate  # (byte, shift, mask) of an operand in the image
 
 
 class WheelMode:
@@ -108,10 +110,12 @@ class WheelMode:
         self.encoder = encoder
         self.version = 1 if params.axis_mode(n) == 3 else 2
         self._input: Operand = params.get(f"A{n}31")["measuring_wheel_active_input"]
+        self._input_place = None if self._input.unset else image_place(self._input)
         p16 = params.get(f"A{n}16")
         self.window_1 = float(p16.number("window_1"))
         self.window_2 = float(p16.number("window_2"))
         self._output: Operand = p16["tolerance_2_output"]
+        self._output_place = None if self._output.unset else image_place(self._output)
         self.set_up = bool(encoder.set_up)  # decision 6
         self.active = False
         self.gain = 0.0  # wheel travel - motor travel while active, IU (decision 1)
@@ -141,7 +145,7 @@ class WheelMode:
         self._last = (motor, counts)
         if last is not None and self.active:
             dm = motor - last[0]
-            dw = float((counts - last[1]) * self.encoder.scale)  # this cycle's scale: FAK 5 / C002 changes do not jump
+            dw = self.encoder.travel(counts - last[1])  # this cycle's scale: FAK 5 / C002 changes do not jump
             self.gain += dw - dm
             if self.version == 2:
                 self.measured += dm - dw
@@ -169,7 +173,8 @@ class WheelMode:
 
     def tick(self, mode: str, image: Any, drive_on: bool) -> ClmError | None:
         """Ax31, Ax16 and the Version 2 correction; returns the Encoder Fault (decision 5)."""
-        on = mode == "automatic" and self.set_up and (self._input.unset or bool(image.get(self._input)))
+        place = self._input_place
+        on = mode == "automatic" and self.set_up and (place is None or bool(image.data[place[0]] >> place[1] & 1))
         if on != self.active:
             self.active = on
             if not on and self.correcting:  # the correction stops with the wheel
@@ -185,8 +190,10 @@ class WheelMode:
                 self._over_2 = self.tolerance_2 = True
         elif not drive_on:
             self._restart(None)
-        if not self._output.unset:
-            image.set(self._output, int(self.tolerance_2))
+        place = self._output_place
+        if place is not None:
+            at, shift, _ = place
+            image.data[at] = image.data[at] | 1 << shift if self.tolerance_2 else image.data[at] & ~(1 << shift)
         if self.correcting:
             self._correct()
         return fault
@@ -299,9 +306,9 @@ class WheelAxis:
         ax = self.axis
         self.set_actual(position + (ax.actual_position - self.motor_position))  # type: ignore[attr-defined]
 
-    def tick(self, mode: str, enable_input: bool, estop_ok: bool) -> ClmError | None:
-        """The drive's cycle (axisdrive.py), then the wheel's: Ax31, Ax16, the Version 2 correction."""
-        fault: ClmError | None = super().tick(mode, enable_input, estop_ok)  # type: ignore[misc]
+    def _wheel_tick(self, mode: str, fault: ClmError | None) -> ClmError | None:
+        """After the drive's cycle (axisdrive.py, which calls it when there is a wheel): Ax31,
+        Ax16, the Version 2 correction."""
         wheel = self.wheel
         if wheel is not None:
             wheel_fault = wheel.tick(mode, self.image, self._drive_on)

@@ -53,6 +53,8 @@ from typing import TYPE_CHECKING
 from .errors import ClmError, axis_fault
 from .image import ProcessImage
 from .operands import Operand
+from .system_io import (AUTOMATIC, CLEAR, ENABLE, ESTOP, IMMEDIATE_STOP, JOG, PARAMETER, RESTART, RESTART_FIELDBUS, START,
+                        EdgeBytes, system_outputs)
 
 if TYPE_CHECKING:
     from .nc import NcTask
@@ -61,20 +63,15 @@ if TYPE_CHECKING:
 __all__ = ["ModeMachine"]
 
 
-def _i(text: str) -> Operand:
-    area, rest = text[0], text[1:].split(".")
-    return Operand(area, int(rest[0]), int(rest[1]), int(rest[2]) if len(rest) > 2 else None)
+def _int(value: object) -> int:
+    """A digit or number field's value (int, Decimal or digit string) as an int."""
+    return int(value)  # type: ignore[call-overload]
 
 
-PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR = (_i(t) for t in ("I0.00.0", "I0.00.1", "I0.00.2", "I0.00.3", "I0.00.4", "I0.00.7"))
-RESTART, RESTART_FIELDBUS = _i("I0.01.6"), _i("I2.01.6")  # X3/15 and the control word's bit 14 (L5920, L7619)
-ENABLE = {1: _i("I0.00.5"), 2: _i("I0.00.6"), 3: _i("I0.02.0"), 4: _i("I0.02.3")}
-JOG = {1: (_i("I0.01.0"), _i("I0.01.1")), 2: (_i("I0.01.2"), _i("I0.01.3")), 3: (_i("I0.02.1"), _i("I0.02.2")), 4: (_i("I0.02.4"), _i("I0.02.5"))}
-Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_INHIBIT = (_i(t) for t in ("Q0.00.0", "Q0.00.1", "Q0.00.2", "Q0.00.5", "Q0.01.1", "Q0.01.5"))
-Q_RESTART = _i("Q0.01.0")  # X4/9 Restart possible; no status-word bit (Q2.01.0 is reserved, L6068)
-_Q0 = (Operand("Q", 0, 0), Operand("Q", 0, 1))
-_STATUS_WORD = (Operand("Q", 2, 0), Operand("Q", 2, 1))
-
+def _operand(value: object) -> Operand:
+    """An operand field's value (parameters' ``operand`` fields are Operands)."""
+    assert isinstance(value, Operand)
+    return value
 
 class ModeMachine:
     def __init__(self, rt: ClmRuntime) -> None:
@@ -90,14 +87,18 @@ class ModeMachine:
         self._data = rt.image.data  # the image's bytes (never replaced, written in place)
         self._places = {op: ProcessImage.locate(op) for op in (PARAMETER, AUTOMATIC, ESTOP, START, IMMEDIATE_STOP, CLEAR, RESTART,
                                                               RESTART_FIELDBUS, *ENABLE.values(), *(k for keys in JOG.values() for k in keys))}
-        # the four edges evaluate() looks for every cycle, read in one pass (no call per input)
-        self._edge_places = tuple(self._places[op][:2] for op in (CLEAR, START, RESTART, RESTART_FIELDBUS))
-        self._edge_before = [0, 0, 0, 0]
+        # the four edges evaluate() looks for every cycle, read in one pass (no call per input):
+        # the three bytes they are in, as they were at the last cycle, and their bit masks
+        self._edge_bytes = EdgeBytes.of(self._places)
+        self._edge_before = (0, 0, 0)
         self._mode_places = (self._places[PARAMETER][:2], self._places[AUTOMATIC][:2])
-        self._output_places = [ProcessImage.locate(op) for op in (Q_MANUAL, Q_AUTOMATIC, Q_PARAMETER, Q_ERROR, Q_RUN_TASK, Q_RESTART)]
-        self._reserved_q2 = ProcessImage.locate(Operand("Q", 2, 1, 0))
-        self._mirror_places = tuple((ProcessImage.locate(a), ProcessImage.locate(b)) for a, b in zip(_Q0, _STATUS_WORD))
+        #: (byte, shift) of E-Stop and of each axis' Enable input (the runtime reads them per axis)
+        self.estop_place = self._estop_place = self._places[ESTOP][:2]
+        self._stop_place = self._places[IMMEDIATE_STOP][:2]
+        self.enable_places = self._enable_places = {n: self._places[op][:2] for n, op in ENABLE.items()}
+        self._q = system_outputs()  # where `outputs` writes, as two whole bytes and their mirrors
         self.enabled_axes: frozenset[int] = frozenset()  # B000's axes, less those !MxOFF switched off
+        self._enabled_in_order: tuple[int, ...] = ()  # the same, sorted (Automatic checks them every cycle)
         self._parameter_axes: frozenset[int] = frozenset()
         self.interface_off: set[int] = set()
         self._feed_interrupted: set[int] = set()
@@ -127,10 +128,12 @@ class ModeMachine:
 
     @property
     def estop_ok(self) -> bool:
-        return bool(self._bit(ESTOP))
+        at, shift = self._estop_place
+        return bool(self._data[at] >> shift & 1)
 
     def axis_enable_input(self, number: int) -> bool:
-        return bool(self._bit(ENABLE[number]))
+        at, shift = self._enable_places[number]
+        return bool(self._data[at] >> shift & 1)
 
     def _wanted(self) -> str:
         data = self._data
@@ -143,14 +146,17 @@ class ModeMachine:
     # -- the cycle ----------------------------------------------------------------------------
 
     def evaluate(self) -> None:
-        wanted = self._wanted()
-        data, before = self._data, self._edge_before
-        (ca, cs), (sa, ss), (ra, rs), (fa, fs) = self._edge_places
-        now = (data[ca] >> cs & 1, data[sa] >> ss & 1, data[ra] >> rs & 1, data[fa] >> fs & 1)
-        clear = bool(now[0] and not before[0])
-        start = bool(now[1] and not before[1])
-        restart = bool((now[2] and not before[2]) or (now[3] and not before[3]))  # restart.py decision 13
-        before[:] = now
+        data, e = self._data, self._edge_bytes
+        (pa, ps), (aa, as_) = self._mode_places  # the mode wanted (as `_wanted`, without the call)
+        p, a = data[pa] >> ps & 1, data[aa] >> as_ & 1
+        wanted = "invalid" if p and a else "parameter" if p else "automatic" if a else "manual"
+        system, restart_x3, restart_dp = data[e.system], data[e.restart_x3], data[e.restart_dp]
+        was_system, was_x3, was_dp = self._edge_before
+        self._edge_before = (system, restart_x3, restart_dp)
+        rising = system & ~was_system
+        clear = bool(rising & e.clear)
+        start = bool(rising & e.start)
+        restart = bool(restart_x3 & ~was_x3 & e.restart or restart_dp & ~was_dp & e.restart_fieldbus)  # restart.py decision 13
         if self.mode == "power-on":
             self._power_on()
         if wanted == "invalid":
@@ -160,7 +166,8 @@ class ModeMachine:
             wanted = "manual"
         if wanted != self.mode:
             self._change(wanted)
-        if not self.estop_ok:
+        at, shift = self._estop_place
+        if not data[at] >> shift & 1:  # (estop_ok)
             self.fault(ClmError("03", "E-Stop input (I0.00.2) is open"))
             for n in list(self.interface_off):  # "activated ... after an E-Stop" (§9.2 MxON)
                 self.interface_enable(n, True)
@@ -221,8 +228,8 @@ class ModeMachine:
         params = rt.memory.parameters
         starts = {2: params.get("B011")["task_2_start"], 4: params.get("B012")["task_4_start"], 5: params.get("B012")["task_5_start"]}
         for n, at in starts.items():
-            if int(at):
-                rt.tasks[n - 1].start(int(at))
+            if _int(at):
+                rt.tasks[n - 1].start(_int(at))
         rt.restart.started()
         self.restart_from_zero = False
         self._stopped_tasks = set()
@@ -234,7 +241,7 @@ class ModeMachine:
         rt.memory.leave_parameter_mode()
         rt.master_factor = 1_000_000  # FAK 5 back to 1.000000 (L1935-1937)
         self._parameter_axes = frozenset(n for n in params.enabled_axes() if n in rt.axes)
-        self.enabled_axes = self._parameter_axes - self.interface_off
+        self._set_enabled_axes(self._parameter_axes - self.interface_off)
         self._take_parameters()
         for axis in rt.axes.values():
             axis.configure(params)
@@ -248,7 +255,7 @@ class ModeMachine:
         except ClmError as e:
             rt.memory.logic_fault()
             self.fault(e)
-        task3 = int(params.get("B011")["task_3_start"])
+        task3 = _int(params.get("B011")["task_3_start"])
         if task3:
             rt.tasks[2].start(task3)
 
@@ -270,17 +277,21 @@ class ModeMachine:
         self._feed_inputs = []
         for n in sorted(self.enabled_axes):
             value = params.get(f"A{n}15")
-            ops = tuple(op for op in (value["interrupt_input"], value["feed_angle_input"]) if not op.unset)
+            ops = tuple(op for op in (_operand(value["interrupt_input"]), _operand(value["feed_angle_input"])) if not op.unset)
             if ops:
                 self._feed_inputs.append((n, ops))
         b014 = params.get("B014")
-        op = b014["start_input"]
-        self._b014 = (None if op.unset else op, int(b014["start_on_mode_change"]), int(b014["start_instruction"]))
+        op = _operand(b014["start_input"])
+        self._b014 = (None if op.unset else op, _int(b014["start_on_mode_change"]), _int(b014["start_instruction"]))
         b015 = params.get("B015")
-        op = b015["interrupt_input"]
-        self._b015 = (None if op.unset else op, int(b015["vector_mode"]), int(b015["interrupt_positioning"]), int(b015["interrupt_address"]))
+        op = _operand(b015["interrupt_input"])
+        self._b015 = (None if op.unset else op, _int(b015["vector_mode"]), _int(b015["interrupt_positioning"]), _int(b015["interrupt_address"]))
         b018 = params.get("B018")
-        self._b018 = (int(b018["fault_code_output"]), tuple(int(b018[f"clear_q1_{byte:02d}"]) for byte in range(7)))
+        self._b018 = (_int(b018["fault_code_output"]), tuple(_int(b018[f"clear_q1_{byte:02d}"]) for byte in range(7)))
+
+    def _set_enabled_axes(self, axes: frozenset[int]) -> None:
+        self.enabled_axes = axes
+        self._enabled_in_order = tuple(sorted(axes))
 
     def task_may_run(self, task: NcTask) -> bool:
         if not task.running or self.mode == "parameter":
@@ -298,7 +309,7 @@ class ModeMachine:
         """``!MxON`` / ``!MxOFF``: kept through faults and mode changes, undone by power-on and
         E-Stop; a command for a switched-off axis is fault 4E (spec §8.6)."""
         (self.interface_off.discard if on else self.interface_off.add)(number)
-        self.enabled_axes = self._parameter_axes - self.interface_off
+        self._set_enabled_axes(self._parameter_axes - self.interface_off)
         axis = self.rt.axes.get(number)
         if axis is not None:
             axis.interface_enable(on)
@@ -309,22 +320,28 @@ class ModeMachine:
     # -- Automatic -------------------------------------------------------------------------------
 
     def _automatic(self, start: bool, restart: bool = False) -> None:
-        for n in sorted(self.enabled_axes):  # "at all times" for the activated axes (§9.1)
-            if not self.axis_enable_input(n):
+        data, places = self._data, self._enable_places
+        for n in self._enabled_in_order:  # "at all times" for the activated axes (§9.1)
+            at, shift = places[n]
+            if not data[at] >> shift & 1:
                 self.fault(ClmError(axis_fault(0x00, n), f"Enable Axis {n} lost in Automatic"))
                 return
         if self.rt.cutoff is not None:  # Start and Immediate Stop have no function (L3929-3931)
-            self._interrupt_inputs()
+            if self._feed_inputs:
+                self._interrupt_inputs()
             return
-        run_allowed = bool(self._bit(IMMEDIATE_STOP))
+        at, shift = self._stop_place
+        run_allowed = bool(data[at] >> shift & 1)
         if self.running and not run_allowed:
             self.immediate_stop()
         elif start and run_allowed and not self.interface_stopped:
             self.start()
         elif restart and run_allowed:
             self.rt.restart.edge()  # a restart, or a Start when none is possible (L3831)
-        self._interrupt_inputs()
-        self._interrupt_vector()
+        if self._feed_inputs:  # (nothing to do when no Ax15 input is programmed)
+            self._interrupt_inputs()
+        if self._b015[0] is not None:  # (nor without a B015 input)
+            self._interrupt_vector()
 
     def start(self, interface: bool = False) -> None:
         """Start input (rising edge) or ``!START``: from 0000 after a mode change or a fault,
@@ -343,8 +360,8 @@ class ModeMachine:
             rt.tasks[0].start(0)
             starts = {2: params.get("B011")["task_2_start"], 4: params.get("B012")["task_4_start"], 5: params.get("B012")["task_5_start"]}
             for n, at in starts.items():
-                if int(at):
-                    rt.tasks[n - 1].start(int(at))
+                if _int(at):
+                    rt.tasks[n - 1].start(_int(at))
             self.restart_from_zero = False
         else:
             for task in rt.tasks:
@@ -493,18 +510,21 @@ class ModeMachine:
     # -- outputs ----------------------------------------------------------------------------------
 
     def outputs(self) -> None:
-        image = self.rt.image
-        data = image.data
-        mode, ok = self.mode, self.fault_error is None
-        flags = (mode == "manual", mode == "automatic", mode == "parameter", ok, self.running, self.rt.restart.possible)
-        for (at, shift, _), on in zip(self._output_places, flags):
-            data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
+        data = self._data
+        fault = self.fault_error
+        q = self._q
+        b0 = data[q.at0] & q.keep0 | q.mode_bits.get(self.mode, 0)  # Manual, Automatic, Parameter
+        if fault is None:
+            b0 |= q.ok  # Error message, active low
+        b1 = data[q.at1] & q.keep1
+        if self.running:
+            b1 |= q.run
+        if self.rt.restart.image is not None:  # (restart.possible)
+            b1 |= q.restart
+        data[q.at0], data[q.at1] = b0, b1
         selector = self._b018[0]
-        if 1 <= selector <= 6 and self.fault_error is not None:
-            code = self.fault_error.code
-            image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)
-        for (src, _, _), (dst, _, _) in self._mirror_places:  # Q0.00 / Q0.01 -> the status word Q2.00 / Q2.01
-            data[dst] = data[src]
-        at, shift, _ = self._reserved_q2  # Restart possible has no status-word bit
-        data[at] &= ~(1 << shift)
-
+        if 1 <= selector <= 6 and fault is not None:
+            code = fault.code
+            self.rt.image.set(Operand("Q", 1, selector - 1), int(code, 16) if len(code) == 2 else 0)
+        data[q.word0] = b0  # Q0.00 / Q0.01 -> the status word Q2.00 / Q2.01
+        data[q.word1] = b1 & q.word1_keep  # Restart possible has no status-word bit

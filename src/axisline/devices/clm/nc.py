@@ -89,7 +89,7 @@ class NcTask:
         for _ in range(TXT_PER_CYCLE):
             ins = rt.memory.program[self.pc]
             try:
-                nxt = handlers[ins.mnemonic](rt, self, ins)
+                nxt = handlers[ins.command.mnemonic](rt, self, ins)
             except ClmError as e:
                 raise e.at(f"N{self.pc:04d}") from None
             if nxt is None:  # waits: the same instruction again next cycle

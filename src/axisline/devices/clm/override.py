@@ -185,6 +185,7 @@ class VelocityFunctions:
         self._mode: str | None = None
         self._state: dict[int, _AxisOverride] = {}
         self._b017: dict[int, int] = {}  # B017's override source per axis (taken at a mode change)
+        self._b017_any = False  # any of them not 0 (asked every cycle)
         self.aeo_on: dict[int, tuple[int, int]] = {}  # axis -> (scale, minimum per mille), AEO on
         self._idle = False  # no source in use and every factor reset: nothing to do per cycle
         self.needs_analog = False
@@ -213,12 +214,13 @@ class VelocityFunctions:
             for n, ov in self._state.items():
                 ov.vmax = self._vmax(n)  # Parameter mode may have changed Ax06 and B017
                 self._b017[n] = int(b017[f"override_axis_{n}"])
+            self._b017_any = any(self._b017.values())
             self._update_needs_analog()
         if not self._state:
             return
         if self.aeo_on:
             self._aeo_tick()
-        if not self.veo and not any(self._b017.values()):
+        if not self.veo and not self._b017_any:
             if self._idle:  # the common case: no override at all costs nothing per cycle
                 return
             self._idle = True  # one pass more: the factors go back to none

@@ -160,8 +160,19 @@ class ClmPersonality(Personality):
         self._load(config, problems)
         self._inputs = self._wire_inputs(config, problems)
         self._outputs = self._wire_outputs(config, problems)
-        # where each wired bit lives in the image, found once
-        self._input_places = [(ProcessImage.locate(op), source) for op, source in self._inputs]
+        # where each wired bit lives in the image, found once: the inputs wired to true / false
+        # as masks per byte (one write a byte a cycle), the others as (byte, bit, source)
+        constant: dict[int, list[int]] = {}
+        self._input_places: list[tuple[int, int, Callable[[], bool]]] = []
+        for op, source in self._inputs:
+            at, shift, _ = ProcessImage.locate(op)
+            if source.__class__ is bool:
+                masks = constant.setdefault(at, [0xFF, 0])  # [bits kept, bits set]
+                masks[0] &= ~(1 << shift)
+                masks[1] |= int(source) << shift  # type: ignore[arg-type]
+            else:
+                self._input_places.append((at, 1 << shift, source))  # type: ignore[arg-type]
+        self._constant_inputs = [(at, keep, on) for at, (keep, on) in sorted(constant.items())]
         self._output_places = [(ProcessImage.locate(op), name) for op, name in self._outputs]
         self._check_cycle(problems)
         me_masters: dict[int, Any] = {}  # master encoder 1 / 2 -> its wheel master
@@ -208,7 +219,10 @@ class ClmPersonality(Personality):
         self._mode_seen: str | None = None
         self._start_cycle = None if config.start_at is None else math.ceil(config.start_at / cycle_s - 1e-9)
         self._report = None if config.report_output is None else parse_operand(config.report_output, bit=True)
+        self._report_place = None if self._report is None else ProcessImage.locate(self._report)
         self._report_previous = 0
+        at, shift, _ = ProcessImage.locate(_START)
+        self._start_bit = (at, 1 << shift)
         self.records: list[dict[str, Any]] = []
         self._targets: dict[int, float] = {}
         self._ever_ran = False
@@ -314,19 +328,22 @@ class ClmPersonality(Personality):
         io = self.machine.io
         for (at, shift, _), name in self._output_places:  # last cycle's outputs reach the hardware now
             io.write(name, bool(data[at] >> shift & 1))
-        if self._report is not None:  # the press gets its signal now: record the feed there
-            now = image.get(self._report)
+        if self._report_place is not None:  # the press gets its signal now: record the feed there
+            at, shift, _ = self._report_place
+            now = data[at] >> shift & 1
             if now and not self._report_previous:
                 if self.meter is not None and self.rt.cutoff is not None:
                     self.meter.cut(cycle)  # a flying cutoff: the piece measured on the material
                 else:
                     self._record(cycle)
             self._report_previous = now
-        for (at, shift, _), source in self._input_places:  # the wired inputs into the image
-            on = source if source.__class__ is bool else source()
-            data[at] = data[at] | (1 << shift) if on else data[at] & ~(1 << shift)
+        for at, keep, on in self._constant_inputs:  # the wired inputs into the image
+            data[at] = data[at] & keep | on
+        for at, bit, source in self._input_places:
+            data[at] = data[at] | bit if source() else data[at] & ~bit
         if self._start_cycle is not None:
-            image.set(_START, int(cycle == self._start_cycle))
+            at, bit = self._start_bit
+            data[at] = data[at] | bit if cycle == self._start_cycle else data[at] & ~bit
         mode = self.rt.modes.mode
         if mode != self._mode_seen:  # B017's averaging is taken on leaving Parameter mode
             if self._mode_seen in (None, "parameter", "power-on") and mode != "parameter":
@@ -334,7 +351,7 @@ class ClmPersonality(Personality):
             self._mode_seen = mode
         analog = self.analog_inputs
         velocity = self.rt.velocity
-        if analog.averaging:  # (else nothing per cycle unless an override reads, analog.py decision 3)
+        if analog.window > 1:  # (averaging; else nothing per cycle unless an override reads, analog.py decision 3)
             analog.tick()
         if velocity.needs_analog:
             velocity.analog_volts[:] = analog.all_volts()

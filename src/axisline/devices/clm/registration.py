@@ -104,6 +104,8 @@ class Watch:
         bit = rt.read_bit(op)
         self._b1 = self._b2 = bit
         self.start = Fraction(axis.actual_position)
+        self.start_of: Fraction | None = None  # the start `start_f` is the float of (_beyond)
+        self.start_f = 0.0
         self._pending: float | None = None  # a mark seen, latched at the next poll (-1: at the cycle)
         self.data: Any = None  # the arming command's own values
 
@@ -262,14 +264,15 @@ class Registration:
     def _srp_poll(self, srp: Srp) -> None:
         w = srp.watch
         assert w is not None and srp.target is not None
-        begin = Fraction(self._var(srp.base + 3), VARIABLE_SCALE)
-        end = Fraction(self._var(srp.base + 4), VARIABLE_SCALE)
-        if w.mark is None:
-            if end and abs(Fraction(w.axis.actual_position) - w.start) > end:
+        if w.mark is None:  # (every cycle of the search)
+            end_raw = self._var(srp.base + 4)
+            if end_raw and _beyond(w, end_raw):
                 srp.missed = True  # the end of search passed: the PSI completes, then +5
                 self.disarm(w)
                 srp.watch = None
             return
+        begin = Fraction(self._var(srp.base + 3), VARIABLE_SCALE)
+        end = Fraction(self._var(srp.base + 4), VARIABLE_SCALE)
         travelled = abs(Fraction(w.mark) - w.start)
         if travelled < begin or (end and travelled > end):
             w.mark = None  # outside the search window: ignored, search on
@@ -291,6 +294,20 @@ class Registration:
             srp.pending = correction
         else:  # mode 2: the current positioning at once
             w.axis.shift_target(correction)
+
+
+def _beyond(w: Watch, end_raw: int) -> bool:
+    """|actual - start| > end (end in millionths), exact. The float difference decides when it
+    is clearly inside (a margin a million times any rounding of it): the exact Fractions are
+    worked out only near the end of the search, not in every cycle of it."""
+    actual = w.axis.actual_position
+    start = w.start
+    if start is not w.start_of:
+        w.start_of, w.start_f = start, float(start)
+    end_f = end_raw / VARIABLE_SCALE
+    if abs(actual - w.start_f) < end_f - 1e-9 * (1.0 + abs(actual) + abs(w.start_f) + end_f):
+        return False
+    return abs(Fraction(actual) - start) > Fraction(end_raw, VARIABLE_SCALE)
 
 
 # -- the commands ------------------------------------------------------------------------------

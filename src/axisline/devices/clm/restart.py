@@ -404,7 +404,12 @@ class Restart:
             if self._key is not None:
                 self._publish()
             return
-        key = (self.generation, *(getattr(a, "exact_target", None) for a in rt.axes.values()))
+        axes = rt.axes
+        if len(axes) == 1:  # (the common case without a generator expression per cycle)
+            (a,) = axes.values()
+            key: tuple[Any, ...] = (self.generation, getattr(a, "exact_target", None))
+        else:
+            key = (self.generation, *(getattr(a, "exact_target", None) for a in axes.values()))
         if key != self._key:
             memory = rt.memory
             memory.restart = self.capture().to_json("running")

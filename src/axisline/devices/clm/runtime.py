@@ -104,12 +104,15 @@ class ClmRuntime:
             if registration.armed:  # a mark is awaited: latch it before the tasks look
                 registration.tick()
             suspended = registration.suspended_task  # RMI: Task 1 waits for RMI 1 1
-            for task in self.tasks:
-                if task.number != suspended and self.modes.task_may_run(task):
+            modes = self.modes
+            for task in self.tasks:  # (a task that is not running is not asked about)
+                if task.running and task.number != suspended and modes.task_may_run(task):
                     task.step(self, HANDLERS)
             self.restart.after_tasks()  # an RSV that ends the restart program restores now
-            for axis in self.axes.values():
-                err = axis.tick(self.modes.mode, self.modes.axis_enable_input(axis.number), self.modes.estop_ok)
+            data, enable, (ea, es) = self.image.data, modes.enable_places, modes.estop_place
+            for axis in self.axes.values():  # (modes.axis_enable_input and .estop_ok, read in place)
+                at, shift = enable[axis.number]
+                err = axis.tick(modes.mode, bool(data[at] >> shift & 1), bool(data[ea] >> es & 1))
                 if err is not None:
                     raise err
         except ClmError as e:
