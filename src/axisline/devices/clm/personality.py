@@ -415,6 +415,16 @@ class ClmPersonality(Personality):
 
     # -- persistence and reporting -------------------------------------------------------------
 
+    def stop(self) -> bool:
+        """Shutdown (`serve`'s Ctrl-C, SIGTERM): what the CLM's Immediate Stop does, also in the
+        flying cutoff, where the input itself has no function (L3929): tasks 1, 2, 4, 5 stop
+        where they are, every axis brakes with its current deceleration (a slave ramps its
+        following down). The machine then runs cycles until they are at rest. The kernel
+        axes' own stop ramp instead brakes the set point harder than the CLM's loop model
+        expects and trips Drive Runaway (fault 42) in the middle of a feed."""
+        self.rt.modes.immediate_stop(programmed=True)
+        return True
+
     def limited_axes(self) -> set[str]:
         """The CLM accounts for the travel of its axes: a linear one (Ax00 type 1) by Ax03/Ax04
         once referenced, a rotary one or a table is endless (axis.py decision 15)."""
