@@ -176,3 +176,34 @@ def test_switch_state_always_agrees_with_its_edges_and_position(speeds, accel, d
         bounds = [b for k in range(100) for b in (0.01 * k - 0.05, 0.01 * k - 0.047)]
         if min(abs(p - b) for b in bounds) > 1e-12:
             assert covered == any(0.01 * k - 0.05 <= p < 0.01 * k - 0.047 for k in range(100))
+
+
+class _Pointer:
+    """A bare position source (no traced motion): sensors interpolate it linearly."""
+
+    def __init__(self, position: float) -> None:
+        self.position = position
+
+
+def test_switch_threshold_on_the_cycle_end_gives_one_edge_each_way():
+    # Sensors solve only the thresholds inside the cycle's position range (sensors.py
+    # Decision 1): a threshold exactly on the range's end must still give its edge, once.
+    source = _Pointer(0.0)
+    switch = ReferenceSwitch(source, position=0.5, width=1.0)
+    seen = []
+    for n, p in enumerate([0.25, 0.5, 0.5, 0.4, 0.5, 2.0]):
+        source.position = p
+        seen.append([(e.rising, e.fraction, e.position) for e in switch.sample(n * 0.001, 0.001)])
+    assert seen == [[], [(True, 1.0, 0.5)], [], [(False, 0.0, 0.5)], [(True, 1.0, 0.5)], [(False, 2.0 / 3.0, 1.5)]]
+    assert not switch.state
+
+
+def test_mark_thresholds_on_the_cycle_ends_give_one_edge_each_way():
+    source = _Pointer(0.0)
+    sensor = PrintMarkSensor(source, PrintMarks(width=0.1, positions=[0.3]), sensor_position=0.2)
+    seen = []
+    for n, p in enumerate([0.5, 0.6, 0.6, 0.7, 0.8]):  # the mark covers the sensor in [0.5, 0.6)
+        source.position = p
+        seen.append([(e.rising, e.fraction, e.position, e.mark) for e in sensor.sample(n * 0.001, 0.001)])
+    assert seen == [[(True, 1.0, 0.5, 0)], [(False, 1.0, 0.6, 0)], [], [], []]
+    assert not sensor.state

@@ -24,6 +24,7 @@ _DEVICES = (
     # read as files, never imported: the layers above the devices keep their decisions here too
     ("Motion kernel and scope (issue 18)", "motion"),
     ("Kernel (issue 18)", "kernel"),
+    ("Plant (issue 18)", "plant"),
     ("Scope channels (issue 18)", "scope_channels.py"),
     ("Serving a machine and the web HMI (issue 17)", "serve"),
     ("Web HMI pages (issue 17)", "hmi"),

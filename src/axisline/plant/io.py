@@ -34,11 +34,11 @@ class DigitalIO:
         ins, outs = _check_names(inputs, outputs)
         self.inputs: tuple[str, ...] = tuple(ins)
         self.outputs: tuple[str, ...] = tuple(outs)
-        self._physical = dict.fromkeys(ins, False)
-        self._image = dict.fromkeys(ins, False)
-        self._previous = dict.fromkeys(ins, False)
-        self._written = dict.fromkeys(outs, False)
-        self._output_previous = dict.fromkeys(outs, False)
+        self._physical: dict[str, bool] = dict.fromkeys(ins, False)
+        self._image: dict[str, bool] = dict.fromkeys(ins, False)
+        self._previous: dict[str, bool] = dict.fromkeys(ins, False)
+        self._written: dict[str, bool] = dict.fromkeys(outs, False)
+        self._output_previous: dict[str, bool] = dict.fromkeys(outs, False)
         self._forced: dict[str, bool] = {}
 
     def _check(self, name: str, table: dict[str, bool], kind: str) -> None:
@@ -58,11 +58,15 @@ class DigitalIO:
         Also remembers the outputs as they were, so output edges are per cycle as well.
         """
         forced = self._forced
+        image = self._image
+        previous = self._previous
         for name, value in self._physical.items():
-            self._previous[name] = self._image[name]
-            self._image[name] = forced.get(name, value)
-        for name in self._written:
-            self._output_previous[name] = self.output(name)
+            previous[name] = image[name]
+            image[name] = forced.get(name, value)
+        written = self._written
+        output_previous = self._output_previous
+        for name, level in written.items():  # output() without its name check: the names are ours
+            output_previous[name] = forced.get(name, level)
 
     def read(self, name: str) -> bool:
         """Input value in this cycle's image, or an output's effective value."""
@@ -153,9 +157,9 @@ class AnalogIO:
         self.limit = float(limit)
         self._in_step = 2.0 * limit / (1 << input_bits) if input_bits else 0.0
         self._out_step = 2.0 * limit / (1 << output_bits) if output_bits else 0.0
-        self._physical = dict.fromkeys(ins, 0.0)
-        self._image = dict.fromkeys(ins, 0.0)
-        self._written = dict.fromkeys(outs, 0.0)
+        self._physical: dict[str, float] = dict.fromkeys(ins, 0.0)
+        self._image: dict[str, float] = dict.fromkeys(ins, 0.0)
+        self._written: dict[str, float] = dict.fromkeys(outs, 0.0)
         self._forced: dict[str, float] = {}
 
     def _convert(self, volts: float, step: float) -> float:

@@ -4,6 +4,15 @@ Each sensor is sampled once after every plant step with the cycle's start time a
 returns the edges of that cycle in time order, each with its exact sub-cycle moment. Edges are
 found from the source's exact motion (see :mod:`.kinematics`), so a capture does not depend on
 the cycle period. The returned list is reused: copy it to keep it past the next sample.
+
+Decisions
+1. (issue 18, the sensors' per-cycle cost) A switch or print-mark sensor computes crossings only
+   of the thresholds inside the cycle's position range (``cycle_bounds``): a threshold outside it
+   cannot be crossed, as the side of a threshold changes only between positions on both sides of
+   it, so the edges and their sub-cycle moments are those of solving every threshold. A switch
+   works out once which thresholds can change its state (finite ones; the leave-thresholds only
+   with hysteresis). Checked by tests/plant/test_sensors.py (edge moments of switches and marks)
+   and by every example's trace staying bit-identical.
 """
 
 from __future__ import annotations
@@ -106,7 +115,9 @@ class PrintMarks:
             return None
         if self._explicit is not None:
             return self._explicit[k]
-        nominal = self.first + k * self.pitch  # type: ignore[operator]
+        pitch = self.pitch
+        assert pitch is not None
+        nominal = self.first + k * pitch
         if self._rng is None:
             return nominal
         while k >= len(self._offsets):
@@ -186,10 +197,13 @@ class PrintMarkSensor:
             arrive, leave = s + m, s + m + width
             if previous >= arrive and not previous >= leave:
                 covered_marks += 1
-            for fraction, direction in cycle_crossings(source, previous, arrive):
-                events.append((fraction, k, 0, direction, arrive))
-            for fraction, direction in cycle_crossings(source, previous, leave):
-                events.append((fraction, k, 1, direction, leave))
+            # A threshold outside the cycle's position range is never crossed in it.
+            if lo <= arrive <= hi:
+                for fraction, direction in cycle_crossings(source, previous, arrive):
+                    events.append((fraction, k, 0, direction, arrive))
+            if lo <= leave <= hi:
+                for fraction, direction in cycle_crossings(source, previous, leave):
+                    events.append((fraction, k, 1, direction, leave))
         # Start from the state the cycle's start position implies, so rounding in a mapped
         # source (a slipping roll) can never leave the output out of step with the material.
         self.covered = covered_marks > 0
@@ -243,7 +257,12 @@ class PositionSwitch:
         # Thresholds that can change the state: 0 enter-low, 1 enter-high, 2 leave-low,
         # 3 leave-high (a side is "position >= threshold"; infinite ones never change).
         h = self.hysteresis
-        self._thresholds = (self.low, self.high, self.low - h, self.high + h)
+        self._thresholds: tuple[float, float, float, float] = (self.low, self.high, self.low - h, self.high + h)
+        # The thresholds that can change the state, worked out once: the infinite ones never
+        # do, and without hysteresis the leave-thresholds are the enter ones (Decision 1).
+        self._watched: tuple[tuple[int, float], ...] = tuple(
+            (i, x) for i, x in enumerate(self._thresholds) if math.isfinite(x) and (i < 2 or h > 0.0)
+        )
 
     @property
     def state(self) -> bool:
@@ -257,13 +276,15 @@ class PositionSwitch:
         source = self.source
         previous = self._previous
         lo, hi = cycle_bounds(source, previous)
-        sides = [previous >= x for x in self._thresholds]
         events: list[tuple[float, int, int]] = []
-        for i, x in enumerate(self._thresholds):
-            if math.isfinite(x) and lo <= x <= hi and (i < 2 or self.hysteresis > 0.0):
+        for i, x in self._watched:
+            # A threshold outside the cycle's position range is never crossed in it: most
+            # cycles a switch is far from its axis and computes no crossing at all.
+            if lo <= x <= hi:
                 for fraction, direction in cycle_crossings(source, previous, x):
                     events.append((fraction, i, direction))
         if events:
+            sides = [previous >= x for x in self._thresholds]
             events.sort()
             h0 = self.hysteresis == 0.0
             for fraction, i, direction in events:
