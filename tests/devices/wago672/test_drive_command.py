@@ -249,3 +249,27 @@ def test_state_variables(index):
     r.step()
     values = {1: 0, 2: 0, 9: 8, 21: 0, 0x1030: 1}
     assert r.dev.state_variable(index) == values[index]
+
+
+def test_state_variables_while_moving_agree_with_their_aliases():
+    """DIAG_RD_VAR (manual §4.7): 0/1024 the cycle, 1/1025 the actual position, 2/1026 the actual
+    velocity, 20/55 the prescaler; an index the module does not know reads 0."""
+    from .rig import ON
+
+    r = Rig()
+    r.c1 = ON
+    r.step()
+    r.c1 = ON | C1.M_Positioning
+    r.step()
+    r.positioning(20000, 3000, 65065)
+    r.c1 = ON | C1.M_Positioning | C1.Start
+    r.step()
+    r.c1 = ON | C1.M_Positioning
+    for _ in range(200):
+        r.step()
+    sv = r.dev.state_variable
+    assert sv(1) == sv(1025) == r.dev.actual_position > 0
+    assert sv(2) == sv(1026) != 0
+    assert sv(0) == sv(1024) > 0
+    assert sv(20) == sv(55) == r.dev.scaling.prescaler
+    assert sv(3) == 0 and sv(999) == 0

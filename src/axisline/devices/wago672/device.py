@@ -354,32 +354,41 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
             return int(extra())
         if 0x1000 <= index <= 0x10FF:
             return int(self.bits.read(index - 0x1000))
-        pos, vel = self._reported()
-        cyc = self._cycle or 0
-        values = {
-            0: cyc,
-            1: pos,
-            2: vel,
-            9: 8,  # hardware version: 8 = 750-672
-            15: CONF_VERSION,
-            16: self.config.values["ConfVersion"],
-            20: self.scaling.prescaler,
-            21: self._overcurrent.state_variable,
-            24: int(round(self._sp[0])),
-            25: int(round(self._sp[1])),
-            30: int(round(self._target)) if self._target is not None else int(round(self._v_set_f)),
-            31: self.scaling.multiplier,
-            41: self.program.counter if self.program is not None else 0,
-            43: int(round(self._v_set_f)),
-            55: self.scaling.prescaler,
-            56: self.current_ratio,
-            1024: cyc,
-            1025: pos,
-            1026: vel,
-            1046: int(round(self.environment["stage_temperature"] * 10)),
-            1048: int(round(self.environment["dc_link_voltage"] * 10)),
-        }
-        return values.get(index, 0)
+        # only the asked variable is worked out: the recorder reads some every cycle
+        if index in (0, 1024):
+            return self._cycle or 0
+        if index in (1, 2, 1025, 1026):
+            pos, vel = self._reported()
+            return pos if index in (1, 1025) else vel
+        if index == 9:
+            return 8  # hardware version: 8 = 750-672
+        if index == 15:
+            return CONF_VERSION
+        if index == 16:
+            return self.config.values["ConfVersion"]
+        if index in (20, 55):
+            return self.scaling.prescaler
+        if index == 21:
+            return self._overcurrent.state_variable
+        if index == 24:
+            return int(round(self._sp[0]))
+        if index == 25:
+            return int(round(self._sp[1]))
+        if index == 30:
+            return int(round(self._target)) if self._target is not None else int(round(self._v_set_f))
+        if index == 31:
+            return self.scaling.multiplier
+        if index == 41:
+            return self.program.counter if self.program is not None else 0
+        if index == 43:
+            return int(round(self._v_set_f))
+        if index == 56:
+            return self.current_ratio
+        if index == 1046:
+            return int(round(self.environment["stage_temperature"] * 10))
+        if index == 1048:
+            return int(round(self.environment["dc_link_voltage"] * 10))
+        return 0
 
     # ================================================================== the tick
     def tick(self, cycle: int) -> None:
