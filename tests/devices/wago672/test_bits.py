@@ -98,3 +98,16 @@ def test_input2_as_stop2_n_by_relinking():
     r.inputs["Input2"] = True
     r.step()
     assert r.has(S1.Stop_N_ACK)
+
+
+def test_the_tick_rewrites_its_own_source_bits_after_a_foreign_write():
+    # the tick writes its source bits only when they change (watches._write_sources); a write
+    # by someone else (set_source) must not survive the next tick
+    r = Rig()
+    r.c1 = ON
+    r.step(3)
+    assert r.has(S1.Ready)
+    r.dev.bits.set_source(Bit.Ready, False)
+    assert not r.dev.bits.read(Bit.Ready)
+    r.step()
+    assert r.dev.bits.read(Bit.Ready) and r.has(S1.Ready)

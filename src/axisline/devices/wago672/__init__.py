@@ -9,11 +9,14 @@ types on the kernel's profile generator), referencing (reference runs), thermal 
 overcurrent model), device (the module: power-on, process image, the tick, errors) with its
 parts modes (mode selection, Start, positioning, speed control, PreCalc, referencing, jog),
 commands (DRIVE_COMMAND and run-program move commands), watches (limits, end of motions, flags,
-source bits), drive (output stage, axis hand-over, STOP ramps, scaling, current, brake) and
+source bits), drive (output stage, axis hand-over, STOP ramps, scaling, current, brake,
+errors), state (the state they share, and why the parts are a chain of layers), signals (the
+consumed signals of a tick), opcodes (move-command opcodes, mailbox return codes) and
 seams (mailbox, run program, position table, input wiring); their docstrings list the decisions
 taken on the spec's [AMBIGUOUS]/[CONFLICT]/[RECONSTRUCTED] points (D1 .. D26). Around the
 module: coupler (Modbus register map, watchdog), personality (the machine file's [device]),
-plc (the [[device.plc]] script that stands in for the PLC in `axisline run`), runreport (the
+plc and plcscript (the [[device.plc]] steps that stand in for the PLC in `axisline run`, and
+their runner), runreport (the
 run's headline and report section), client (the PLC side over Modbus).
 """
 

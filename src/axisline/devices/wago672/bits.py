@@ -174,12 +174,12 @@ class BitGroup:
     """Bits the device reads together every tick (its input signals, the status bytes): the
     table keeps one gatherer per group, rebuilt when the links change (`BitTable.group`)."""
 
-    __slots__ = ("bits", "gather")
-
     def __init__(self, bits: tuple[int, ...]) -> None:
         self.bits = bits
         # field -> the group's values, or None while one of the bits needs the chain (_SLOW)
         self.gather: Callable[[bytearray], tuple[int, ...]] | None = None
+        # the places in `field` the bits read (as bytes: indexing bytes is cheap in compiled code)
+        self.places: bytes | None = None
 
 
 class BitTable:
@@ -211,6 +211,9 @@ class BitTable:
         self._groups: list[BitGroup] = []
         self._bytes: dict[int, BitGroup] = {}  # status bytes by their first bit
         self._generation = -1
+        # a source bit was written by someone other than the device's tick: the tick rewrites
+        # its own source bits (it writes them only when they change: watches._write_sources)
+        self.sources_touched = True
         self.reset()
 
     # ---- links
@@ -228,6 +231,7 @@ class BitTable:
         for g in self._groups:
             places = [self._link[n] for n in g.bits]
             g.gather = None if _SLOW in places else itemgetter(*places)
+            g.places = None if _SLOW in places else bytes(places)
 
     def _chain_end(self, n: int, depth: int) -> int:
         """The place in `field` bit n reads (the steps of `_resolve`), or _SLOW."""
@@ -271,6 +275,23 @@ class BitTable:
             return bytes(gather(self.field))
         return bytes(self._resolve(n, 0) for n in g.bits)
 
+    def word(self, g: BitGroup) -> int:
+        """`values` packed into an int: bit i is the group's i-th bit (the tick's way to read)."""
+        if self._generation != self.config.generation:
+            self._relink()
+        places = g.places
+        w = 0
+        if places is not None:
+            field = bytes(self.field)  # a snapshot: its bytes are read without boxing
+            for i in range(len(places)):
+                if field[places[i]]:
+                    w |= 1 << i
+            return w
+        for i, n in enumerate(g.bits):
+            if self._resolve(n, 0):
+                w |= 1 << i
+        return w
+
     def reset(self) -> None:
         """After a reset: MZERO-linked bits are 0, MONE-linked bits are 1 (§3.10.4.1)."""
         for t in _POINTER_TARGETS:
@@ -283,10 +304,12 @@ class BitTable:
         if n in (Bit.ZERO, Bit.ONE, Bit.MZERO, Bit.MONE):
             raise WagoError(1243, f"bit {n} is a constant and cannot be written")
         self.field[n] = 1 if value else 0
+        self.sources_touched = True
 
     def put(self, n: int, value: bool) -> None:
-        """set_source without the checks, for the device's own source bits (hot path)."""
+        """set_source without the checks (hot path)."""
         self.field[n] = 1 if value else 0
+        self.sources_touched = True
 
     def set_byte(self, first: int, value: int) -> None:
         """Eight source bits first .. first+7 from one byte (control bytes -> KBUS_CTRLx_y)."""

@@ -25,75 +25,15 @@ from typing import Any
 
 from axisline.devices.wago672.errors import WagoError
 from axisline.devices.wago672.image import MODE_IDLE, MODE_MAILBOX, MODE_PROGRAM
+from axisline.devices.wago672.opcodes import RC, Opcode
 from axisline.devices.wago672.thermal import CurrentPhase
+from axisline.devices.wago672.modes import Modes
 
 __all__ = ["Opcode", "RC", "MoveCommands"]
 
 
-class Opcode:
-    """Move-mode commands of DRIVE_COMMAND and run programs (manual §4.3, wago.md §3.9)."""
-
-    PROG_END = 0x00
-    MOVE = 0x02
-    MOVE_IMMEDIATE = 0x03
-    MOVE_TABLE = 0x04
-    MOVE_TABLE_IMMEDIATE = 0x05
-    MOVE_REL = 0x06
-    MOVE_TABLE_REL = 0x08
-    SPEED = 0x10
-    SPEED_IMMEDIATE = 0x11
-    STOP_FAST = 0x18
-    STOP_NO_RAMP = 0x19
-    TORQ = 0x1C
-    TORQ_IMM = 0x1D
-    START_REFERENCING = 0x20
-    SET_ACC_MODE = 0x21
-    SET_ACC = 0x22
-    SET_ACC_PARAM_UP = 0x23
-    SET_ACC_PARAM_DOWN = 0x24
-    SET_VELOCITY = 0x25
-    SET_VELOCITY_TARGET = 0x2B
-    SET_ACTUALPOSITION = 0x2E
-    SET_ACTUALPOSITION_ZERO = 0x2F
-    SET_CURRENT = 0x39
-
-
-class RC:
-    """Mailbox return codes (Status_Mbx bits 0..6, wago.md §3.7)."""
-
-    OK = 0x00
-    GENERAL_ERROR = 0x01
-    STILL_EXECUTING = 0x11
-    NOT_ACCEPTED = 0x12
-    UNKNOWN_COMMAND = 0x13
-    ACCESS_DENIED = 0x23
-
-
-class MoveCommands:
-    """Mixed into `Wago672` (its state: mode, ready, the move settings, the set point ...)."""
-
-    mode: int
-    program: Any
-    scaling: Any
-    busy: bool
-    acc_mode: int
-    acc_up: int
-    acc_down: int
-    param_up: int
-    param_down: int
-    velocity: int
-    velocity_target: int
-    _ready: bool
-    _mode_exit: bool
-    _stopping: bool
-    _pending: Callable[[], None] | None
-    _last_target: float | None
-    _source: str
-    _sig: dict[str, bool]
-    _stop_n_ack: bool
-    _ref: Any
-    _ratio_set: dict[CurrentPhase, int]
-    _mailbox_reference: bool
+class MoveCommands(Modes):
+    """DRIVE_COMMAND and the run programs' move commands: a layer of `Wago672` over `Modes` (state.py)."""
 
     def drive_command(self, opcode: int, data: bytes | tuple[int, int, int] = (0, 0, 0), source: str = "mailbox") -> int:
         """Execute a move-mode command (DRIVE_COMMAND sub-command or run-program line).
@@ -178,11 +118,11 @@ class MoveCommands:
 
     def _stop_chain_open(self) -> bool:
         """Stop1_N and Stop2_N are 1: the drive may be started."""
-        return self._stop_n_ack and bool(self._sig.get("stop2_n") and self._sig.get("stop1_n"))
+        return self._stop_n_ack and bool(self._sig.stop2_n and self._sig.stop1_n)
 
     def _cmd_stop_fast(self, d: bytes, source: str) -> int:
         if self.program is not None and source == "mailbox" and self.program.running:
-            self.program.stop(self)
+            self.program.stop(self)  # type: ignore[arg-type]  # a layer of Wago672
         self._ref = None
         self._stop_fast()
         self.busy = False if self._at_rest() else self.busy

@@ -32,12 +32,13 @@ Handshakes (manual §3.11.1, §3.7.2; wago.md §7):
 Seams for the second engineer (the mailbox engine, tables, run programs, camshaft, bit linking):
 seams.py lists them; `mailbox.attach(dev)` plugs them in.
 
-The module is one class in parts, by what they do: this file (power-on, the process image, the
-tick, errors and read-outs), modes.py (mode selection, Start, positioning, speed control,
-PreCalc, referencing, jog), commands.py (the move commands of DRIVE_COMMAND and run programs),
-watches.py (limit switches, software limits, end of motions, flags, the source bits), drive.py
-(output stage, axis hand-over, STOP ramps, scaling and ramps, current and brake), seams.py
-(mailbox, run program, position table and input wiring hooks). Each part lists the decisions
+The module is one class in layers, by what they do (state.py declares the state and says why a
+chain): drive.py (output stage, axis hand-over, STOP ramps, scaling and ramps, current, brake and
+errors), watches.py (limit switches, software limits, end of motions, flags, the source bits),
+modes.py (mode selection, Start, positioning, speed control, PreCalc, referencing, jog),
+commands.py (the move commands of DRIVE_COMMAND and run programs) and this file (power-on, the
+process image, the tick and read-outs); seams.py has the mailbox, run program, position table and
+input wiring hooks. Each part lists the decisions
 it takes; D1 .. D26 are numbered across them.
 
 The 1 ms tick reads what the PLC and the inputs set through the bit table's links, which are
@@ -70,26 +71,23 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from axisline.devices.wago672.bits import PACK, SPREAD, Bit, BitTable
+from axisline.devices.wago672.bits import SPREAD, Bit, BitTable
 from axisline.devices.wago672.commands import RC, MoveCommands, Opcode
 from axisline.devices.wago672.config_table import CONF_VERSION, ConfigTable, ConfigValueError
-from axisline.devices.wago672.drive import TICK, Drive
-from axisline.devices.wago672.errors import ErrorClass, ErrorMemory, WagoError, error_class
+from axisline.devices.wago672.drive import TICK
+from axisline.devices.wago672.errors import ErrorMemory, WagoError
 from axisline.devices.wago672.image import C0, MODE_IDLE, MODE_JOG, MODE_POSITIONING, MODE_PROGRAM, MODE_SPEED, InputImage, OutputImage
-from axisline.devices.wago672.modes import Modes
-from axisline.devices.wago672.referencing import RefRun
+from axisline.devices.wago672.signals import SIGNAL_BITS, Signals
 from axisline.devices.wago672.seams import Inputs, MailboxHandler, NoMailbox, RunProgram, no_position_table
 from axisline.devices.wago672.thermal import CurrentPhase, OvercurrentModel
 from axisline.devices.wago672.trajectory import Feed, Ramp
-from axisline.devices.wago672.watches import Watches
 from axisline.motion.axis import Axis, AxisState, ErrorId
 
 __all__ = ["Wago672", "NoMailbox", "MailboxHandler", "RunProgram", "Opcode", "RC", "TICK"]
 
-SPEED_CONTROL_PERIOD = 100000  # implicit rotary period of speed control [microsteps] (D11)
 
 
-class Wago672(Modes, MoveCommands, Watches, Drive):
+class Wago672(MoveCommands):
     """The 750-672 module on one stepper axis. See the module docstring."""
 
     def __init__(
@@ -111,30 +109,30 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
         except ConfigValueError as e:
             raise ValueError(f"configuration table not usable: {e}") from None
         self.bits = BitTable(self.config)
-        self._signal_bits = self.bits.group(_SIGNAL_BITS)
+        self._signal_bits = self.bits.group(SIGNAL_BITS)
         self._status_bits = self.bits.group(_STATUS_BITS)
         self.errors = ErrorMemory()
-        self.mailbox: MailboxHandler = mailbox if mailbox is not None else NoMailbox()
-        self.program: RunProgram | None = program
-        self.position_table: Callable[[int, int], int] = no_position_table
-        self.cam_pattern: Callable[[float], int] | None = None
+        self.mailbox = mailbox if mailbox is not None else NoMailbox()
+        self.program = program
+        self.position_table = no_position_table
+        self.cam_pattern = None
         self.eeprom_writing = False  # set by the table manager: LED A flashes at 10 Hz
-        self.on_warm_start: Callable[[Wago672], None] | None = None  # table manager: reload EEPROM data
+        self.on_warm_start = None  # table manager: reload EEPROM data
         # second engineer's parts (mailbox.attach): called each tick after the source bits are
         # written (filters, data recorder, autostart, EEPROM jobs), and extra state variables
-        self.tick_hooks: list[Callable[[int], None]] = []
-        self.extra_variables: dict[int, Callable[[], int]] = {}
+        self.tick_hooks = []
+        self.extra_variables = {}
         self.stepping_timeout_ms = 0  # SteppingMode (D4): 0 = JogMode without time limit
         self.reference_on_target = True  # D5: On_Target after a PI reference run
         # simulated environment of the output stage (D22): temperature [degC], DC link [V]
-        self.environment: dict[str, float] = {"stage_temperature": 40.0, "dc_link_voltage": 55.0}
+        self.environment = {"stage_temperature": 40.0, "dc_link_voltage": 55.0}
         self._k = axis.scale.counts_per_unit  # microsteps per axis unit
         self.feed = Feed(self._k, axis.period)
         self._sync_cmd = None
         self._take_outputs(OutputImage())
-        self._out_raw: bytes | None = None  # the bytes `_out` was decoded from
-        self._last_write: int | None = None
-        self._cycle: int | None = None
+        self._out_raw = None  # the bytes `_out` was decoded from
+        self._last_write = None
+        self._cycle = None
         self._in_tick = False
         self._power_on()
 
@@ -156,42 +154,43 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
         self.reference_ok = False
         self.precalc_ack = False
         self._direction = False
-        self._motion: str | None = None  # "position", "speed", "stop", "jog", "reference"
+        self._motion = None  # "position", "speed", "stop", "jog", "reference"
         self._stopping = False  # a STOP ramp runs (Current_Ratio_Stop)
-        self._target: float | None = None  # position target [microsteps, unwrapped]
-        self._last_target: float | None = None  # MOVE_REL base (D18)
-        self._v_set = 0.0  # commanded speed [user units] for On_Speed
+        self._target = None  # position target [microsteps, unwrapped]
+        self._last_target = None  # MOVE_REL base (D18)
+        self._v_set = 0  # commanded speed [user units] for On_Speed
         self._v_set_f = 0.0  # [microsteps/s]
-        self._pending: Callable[[], None] | None = None  # deferred set point (D8)
+        self._pending = None  # deferred set point (D8)
         self._cur_up = self._cur_down = Ramp("trapezoid", 1.0)
-        self._precalc: dict | None = None
+        self._precalc = None
         self._source = "pi"  # who started the running task: "pi", "mailbox", "program"
         self._mailbox_reference = False
         self.err_range_pos = False
         self.err_range_neg = False
         self._range_block = 0  # a refused reference start at this limit switch (+1/-1)
         self._ls_special = 0  # +1/-1: on that limit switch after a limit-switch reference run
-        self._ls_left: int | None = None
+        self._ls_left = None
         self._jog_dir = 0
         self._jog_block = False
         self._jog_started = 0
         self._jog_ls = 0
         self._jog_outside = False
-        self._ref: RefRun | None = None
+        self._ref = None
         self._ref_pending_shift = 0.0
         self._brake_auto = False
         self._overcurrent = OvercurrentModel()
         self.current_phase = CurrentPhase.OFF
         self.phase_current = 0.0
         self.current_ratio = 0
-        self._ratio_set: dict[CurrentPhase, int] = {}  # SET_CURRENT values (else the configuration's)
+        self._ratio_set = {}  # SET_CURRENT values (else the configuration's)
         self._error_since = 0
         self._bad_selection = 0
-        self._prev: dict[str, bool] = {}
-        self._sig: dict[str, bool] = {}
+        self._prev = Signals()
+        self._sig = Signals()
         self._sp = (0.0, 0.0, 0.0, 0.0)
         self._mbx_on = False
         self._mbx_reply = bytes(6)
+        self._sources_word = -1  # the source bits are written at the first tick
         self._status = (0, 0, 0, 0)
         self._outputs = (False, False)
         self._move_settings_from_config()
@@ -287,18 +286,6 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
     @property
     def standstill(self) -> bool:
         return self._sp[1] == 0.0
-
-    @property
-    def brake(self) -> bool:
-        """The Break bit: 1 brake vented (released)."""
-        return self._brake_auto or self._sig.get("brake_manual", False)
-
-    def rotary_period(self) -> int:
-        """The period the actual value wraps with [microsteps] (0: linear)."""
-        p = self.config.values["Rotary_Axis_Period"]
-        if p == 0 and self.mode == MODE_SPEED:
-            return SPEED_CONTROL_PERIOD
-        return p
 
     def _reported(self) -> tuple[int, int]:
         """Actual position and velocity in user units for the process image."""
@@ -401,12 +388,6 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
             self._in_tick = False
             self._cycle = cycle
 
-    def _c_plan(self) -> int:
-        """Cycle of the last set point: a plan starts from it (kernel rule)."""
-        if self._in_tick:
-            return self._now - 1
-        return self._cycle if self._cycle is not None else 0
-
     def _tick(self, cycle: int) -> None:
         b = self.bits
         out = self._out
@@ -420,34 +401,34 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
             s = self._read_signals()
         except WagoError as e:
             self._raise(e.code, e.text)
-            s = self._sig or {k: False for k in _SIGNALS}
+            s = self._sig  # the last tick's (all 0 before the first)
         self._sig = s
         prev = self._prev
         # rising edges: only these four are used
-        start_edge = s["start"] and not prev.get("start", False)
-        precalc_edge = s["precalc"] and not prev.get("precalc", False)
+        start_edge = s.start and not prev.start
+        precalc_edge = s.precalc and not prev.precalc
         # ---- 3 reset handshake and latched scaling
-        if s["reset_quit"]:
+        if s.reset_quit:
             self.reset_flag = False
-        if not s["enable"]:
+        if not s.enable:
             self._latch_scaling()
         # ---- 4 error sources and Error_Quit
         self._watch_environment(s)
-        if s["error_quit"] and not prev.get("error_quit", False):
+        if s.error_quit and not prev.error_quit:
             self.quit_errors()
         # ---- 5 Ready and the output stage
-        ready = s["enable"] and not self.errors.error
+        ready = s.enable and not self.errors.error
         if self._ready and not ready:
             self._lose_ready()
         self._ready = ready
-        self._stage_on = ready and s["enable_drive"]
+        self._stage_on = ready and s.enable_drive
         if not self._stage_on and self._motion is not None:
             self._no_ramp(stopped=True)
         self._axis_power(self._stage_on)
         if not self._stage_on:
             self.feed.hold(self._axis_steps())
         # ---- 6 the stop chain (Stop2_N, Stop1_N)
-        stop_ok = s["stop2_n"] and s["stop1_n"]
+        stop_ok = s.stop2_n and s.stop1_n
         if ready and not stop_ok:
             self._pending = None
             if self._ref is not None and self._ref.active:
@@ -463,20 +444,20 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
         # ---- 8 Start, PreCalc, SetActual_Pos
         if start_edge:
             self._on_start(s)
-        elif not s["start"]:
+        elif not s.start:
             self._start_ack = False
         if self.mode in (MODE_POSITIONING, MODE_SPEED):
             self._precalc_step(s, precalc_edge)
         elif self._precalc is not None or self.precalc_ack:
             self._precalc, self.precalc_ack = None, False
-        if s["set_actual"] and not prev.get("set_actual", False) and self._stage_on and self._at_rest() and self._motion is None:
+        if s.set_actual and not prev.set_actual and self._stage_on and self._at_rest() and self._motion is None:
             try:
                 self._set_actual(self.scaling.steps(self.config.values["Reference_Offset"], "Reference_Offset"))
             except WagoError as e:
                 self._raise(e.code, e.text)
         # ---- 9 mode work: referencing, jog, program, mailbox, deferred set points
         if self._ref is not None and self._ref.active and self._stage_on:
-            self._ref.step(s["set_reference"], s["ls_pos"], s["ls_neg"])
+            self._ref.step(s.set_reference, s.ls_pos, s.ls_neg)
         if self.mode == MODE_JOG and not self._mode_exit and self._stage_on and stop_ok:
             self._jog_step(s, cycle)
         if self.program is not None and (self.mode == MODE_PROGRAM or self._autostarted()) and self._ready:
@@ -502,31 +483,15 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
             hook(cycle)
         self._sync_axis(cycle)
         s0 = self._s0(s)
-        st = b.levels(self._status_bits)  # S1, S2, S3 (KBUS_ST1_0 ..), OUT1, OUT2
-        self._status = (s0, PACK[st[0:8]], PACK[st[8:16]], PACK[st[16:24]])
-        self._outputs = (st[24] == 1, st[25] == 1)
+        st = b.word(self._status_bits)  # S1, S2, S3 (KBUS_ST1_0 ..), OUT1, OUT2
+        self._status = (s0, st & 0xFF, (st >> 8) & 0xFF, (st >> 16) & 0xFF)
+        self._outputs = ((st >> 24) & 1 == 1, (st >> 25) & 1 == 1)
         self._prev = s
 
-    def _read_signals(self) -> dict[str, bool]:
-        return dict(zip(_SIGNAL_NAMES, self.bits.values(self._signal_bits)))
+    def _read_signals(self) -> Signals:
+        return Signals(self.bits.word(self._signal_bits), True)
 
     # ================================================================== errors
-    def _raise(self, code: int, text: str = "", cause: Callable[[], bool] | None = None) -> None:
-        """Raise a device error or warning. An error switches the output stage off at once."""
-        if not self.errors.raise_code(code, text, cause=cause):
-            return
-        if error_class(code) is ErrorClass.WARNING:
-            return
-        self._error_since = self._cycle or 0
-        if self._ready:
-            self._lose_ready()
-        self._ready = False
-        self._stage_on = False
-        self._axis_power(False)
-        self.current_phase = CurrentPhase.OFF  # the output stage is off: no current from now on
-        self.phase_current = 0.0
-        self.current_ratio = 0
-
     def raise_error(self, code: int, text: str = "", cause: Callable[[], bool] | None = None) -> None:
         """For the second engineer's parts (tables, programs, bit linking): report a device error."""
         self._raise(code, text, cause)
@@ -539,66 +504,43 @@ class Wago672(Modes, MoveCommands, Watches, Drive):
         if self.axis.state is AxisState.ERROR_STOP and not self.errors.error:
             self.axis.reset()
 
-    def _watch_environment(self, s: dict[str, bool]) -> None:
+    def _watch_environment(self, s: Signals) -> None:
+        # (the causes are methods, not lambdas: a closure would cost an allocation every tick)
         c = self.config.values
-        if s["error_set"]:
-            self._raise(1358, "Error_Set is 1", cause=lambda: self._sig.get("error_set", False))
+        if s.error_set:
+            self._raise(1358, "Error_Set is 1", cause=self._error_set_active)
         temp = self.environment["stage_temperature"]
         if temp * 10.0 > c["Warn_Treshold_Temperature"]:
-            over = lambda: self.environment["stage_temperature"] * 10.0 > self.config.values["Warn_Treshold_Temperature"]  # noqa: E731
             text = f"output stage {temp:g} degC above Warn_Treshold_Temperature {c['Warn_Treshold_Temperature'] / 10:g} degC"
             if c["ErrorNotificationMode"] & 2:
-                self._raise(1894, text, cause=over)
+                self._raise(1894, text, cause=self._over_temperature)
             elif c["WarningNotificationMode"] & 2:
-                self._raise(5893, text, cause=over)
+                self._raise(5893, text, cause=self._over_temperature)
         u = self.environment["dc_link_voltage"] * 10.0
         if u > c["DC_Link_Umax"]:
-            self._raise(1815, f"DC link {u / 10:g} V above DC_Link_Umax {c['DC_Link_Umax'] / 10:g} V",
-                        cause=lambda: self.environment["dc_link_voltage"] * 10.0 > self.config.values["DC_Link_Umax"])
+            self._raise(1815, f"DC link {u / 10:g} V above DC_Link_Umax {c['DC_Link_Umax'] / 10:g} V", cause=self._dc_link_high)
         elif u < c["DC_Link_Umin"]:
-            self._raise(1816, f"DC link {u / 10:g} V below DC_Link_Umin {c['DC_Link_Umin'] / 10:g} V",
-                        cause=lambda: self.environment["dc_link_voltage"] * 10.0 < self.config.values["DC_Link_Umin"])
+            self._raise(1816, f"DC link {u / 10:g} V below DC_Link_Umin {c['DC_Link_Umin'] / 10:g} V", cause=self._dc_link_low)
         if self.axis.state is AxisState.ERROR_STOP:
             code = 1892 if self.axis.error_id == ErrorId.FOLLOWING_ERROR else 1811
             self._raise(code, f"axis {self.axis.name}: {self.axis.error_text}")
+
+    def _error_set_active(self) -> bool:
+        return self._sig.error_set
+
+    def _over_temperature(self) -> bool:
+        return self.environment["stage_temperature"] * 10.0 > self.config.values["Warn_Treshold_Temperature"]
+
+    def _dc_link_high(self) -> bool:
+        return self.environment["dc_link_voltage"] * 10.0 > self.config.values["DC_Link_Umax"]
+
+    def _dc_link_low(self) -> bool:
+        return self.environment["dc_link_voltage"] * 10.0 < self.config.values["DC_Link_Umin"]
 
     def __repr__(self) -> str:
         return f"Wago672(axis={self.axis.name!r}, mode={self.mode}, ready={self._ready}, error={self.errors.error})"
 
 
-_SIGNALS: dict[str, int] = {
-    "enable": Bit.Enable,
-    "stop2_n": Bit.Stop2_N,
-    "start": Bit.Start,
-    "cmd1": Bit.Command_1,
-    "cmd2": Bit.Command_2,
-    "cmd3": Bit.Command_3,
-    "cmd4": Bit.Command_4,
-    "cmd5": Bit.Command_5,
-    "enable_drive": Bit.Enable_Drive,
-    "reset_quit": Bit.Reset_Quit,
-    "dir_pos": Bit.Direction_Pos,
-    "dir_neg": Bit.Direction_Neg,
-    "set_reference": Bit.Set_Reference,
-    "precalc": Bit.PreCalc,
-    "setup_active": Bit.SetupSpeed_Active,
-    "error_quit": Bit.Error_Quit,
-    "ls_pos": Bit.LimitSwitch_Pos,
-    "ls_neg": Bit.LimitSwitch_Neg,
-    "stop1_n": Bit.Stop1_N,
-    "brake_manual": Bit.Brake_Manual,
-    "freq_sel_0": Bit.Freq_Range_Sel_0,
-    "freq_sel_1": Bit.Freq_Range_Sel_1,
-    "acc_sel_0": Bit.Acc_Range_Sel_0,
-    "acc_sel_1": Bit.Acc_Range_Sel_1,
-    "set_actual": Bit.Set_Actual_Pos,
-    "jog_pos": Bit.Jog_Pos,
-    "jog_neg": Bit.Jog_Neg,
-    "error_set": Bit.Error_Set,
-}
-
-_SIGNAL_NAMES = tuple(_SIGNALS)
-_SIGNAL_BITS = tuple(int(bit) for bit in _SIGNALS.values())
 # what the PLC and the outputs see: S1, S2, S3 (eight bits each from KBUS_ST1_0 on), OUT1, OUT2
 _STATUS_BITS = tuple(range(Bit.KBUS_ST1_0, Bit.KBUS_ST1_0 + 24)) + (int(Bit.OUT1), int(Bit.OUT2))
 _INPUT1 = int(Bit.Input1)

@@ -31,63 +31,23 @@ test_limits_and_rotary.py::test_drive_direction_inverts_the_motor_not_the_logica
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
 
-from axisline.devices.wago672.errors import WagoError
+from axisline.devices.wago672.errors import ErrorClass, WagoError, error_class
 from axisline.devices.wago672.image import MODE_IDLE
-from axisline.devices.wago672.referencing import RefRun
-from axisline.devices.wago672.thermal import CurrentPhase, OvercurrentModel, phase_current
-from axisline.devices.wago672.trajectory import ACC_INTERNAL_MAX, Feed, Ramp, plan_stop, ramp_from_mode
+from axisline.devices.wago672.thermal import CurrentPhase, phase_current
+from axisline.devices.wago672.trajectory import ACC_INTERNAL_MAX, Ramp, plan_stop, ramp_from_mode
 from axisline.devices.wago672.units import Scaling, acc_multiplier, freq_prescaler
-from axisline.motion.axis import Axis, AxisState
+from axisline.motion.axis import AxisState
 from axisline.motion.profiles import State
+from axisline.devices.wago672.state import DeviceState
 
 __all__ = ["TICK", "Drive"]
 
 TICK = 0.001  # the module's scan interval: one TICK = 1 ms (§3.10.6.1.1)
 
 
-class Drive:
-    """Mixed into `Wago672` (its state: the axis, the feed, the motion running, the flags ...)."""
-
-    axis: Axis
-    feed: Feed
-    config: Any
-    scaling: Scaling
-    program: Any
-    mode: int
-    busy: bool
-    on_speed: bool
-    precalc_ack: bool
-    current_phase: CurrentPhase
-    current_ratio: int
-    phase_current: float
-    _k: float
-    _dir_sign: float
-    _sync_cmd: Any
-    _out: Any
-    _sig: dict[str, bool]
-    _sp: tuple[float, float, float, float]
-    _stage_on: bool
-    _stopping: bool
-    _motion: str | None
-    _pending: Callable[[], None] | None
-    _last_target: float | None
-    _target: float | None
-    _brake_auto: bool
-    _cur_up: Ramp
-    _cur_down: Ramp
-    _mode_exit: bool
-    _stop_n_ack: bool
-    _start_ack: bool
-    _ref: RefRun | None
-    _jog_dir: int
-    _precalc: dict | None
-    _overcurrent: OvercurrentModel
-    _ratio_set: dict[CurrentPhase, int]
-
-    _raise: Callable[..., None]  # device.py: raise a device error
-    _c_plan: Callable[[], int]  # device.py: the cycle a plan starts from
+class Drive(DeviceState):
+    """The output stage and the axis: the lowest layer of `Wago672` (state.py)."""
 
     def _lose_ready(self) -> None:
         """Ready 1 -> 0: speed 0 at once, mode ACK cleared at once (§3.11.1.2)."""
@@ -102,7 +62,7 @@ class Drive:
         self._jog_dir = 0
         self._precalc, self.precalc_ack = None, False
         if self.program is not None and self.program.running:
-            self.program.stop(self)
+            self.program.stop(self)  # type: ignore[arg-type]  # a layer of Wago672
 
     def _axis_steps(self) -> float:
         return self.axis.command_position * self._k * self._dir_sign
@@ -213,9 +173,9 @@ class Drive:
         c = self.config.values
         out = self._out
         sig = self._sig
-        if sig:
-            fsel = int(sig["freq_sel_0"]) | int(sig["freq_sel_1"]) << 1
-            asel = int(sig["acc_sel_0"]) | int(sig["acc_sel_1"]) << 1
+        if sig.known:
+            fsel = int(sig.freq_sel_0) | int(sig.freq_sel_1) << 1
+            asel = int(sig.acc_sel_0) | int(sig.acc_sel_1) << 1
         else:
             fsel, asel = out.c2 & 3, (out.c2 >> 2) & 3
         try:
@@ -263,35 +223,40 @@ class Drive:
         accelerating = st.a * st.v > 0.0 or st.v == 0.0
         return (self._cur_up if accelerating else self._cur_down).smooth
 
+    def _overloaded(self) -> bool:
+        """The cause of 1413: the thermal model has not cooled back to 0 (D22)."""
+        return self._overcurrent.load > 0.0
+
     def _current_and_brake(self, cycle: int) -> None:
         p, v, a, _ = self._sp
         c = self.config.values
+        # the phase and its configured ratio (Enum members are not hashed here: a dict keyed
+        # by them costs a Python-level __hash__ per lookup)
         if not self._stage_on:
-            phase = CurrentPhase.OFF
+            phase, name = CurrentPhase.OFF, ""
         elif self._stopping and v != 0.0:
-            phase = CurrentPhase.STOP
+            phase, name = CurrentPhase.STOP, "Current_Ratio_Stop"
         elif v == 0.0:
-            phase = CurrentPhase.STANDSTILL
+            phase, name = CurrentPhase.STANDSTILL, "Current_Ratio_StandStill"
         elif a * v > 0.0:
-            phase = CurrentPhase.RAMP_UP
+            phase, name = CurrentPhase.RAMP_UP, "Current_Ratio_RampUp"
         elif a * v < 0.0:
-            phase = CurrentPhase.RAMP_DOWN
+            phase, name = CurrentPhase.RAMP_DOWN, "Current_Ratio_RampDown"
         else:
-            phase = CurrentPhase.DRIVE
+            phase, name = CurrentPhase.DRIVE, "Current_Ratio_Drive"
         self.current_phase = phase
         if phase is CurrentPhase.OFF:
             ratio = 0
-        elif phase is CurrentPhase.STOP:
-            ratio = c["Current_Ratio_Stop"]
         else:
-            ratio = self._ratio_set.get(phase)
-            if ratio is None:
-                ratio = c[_RATIO_NAMES[phase]]
+            # a SET_CURRENT value wins over the configuration's (not for the STOP ramp)
+            ratio = self._ratio_set.get(phase, -1) if self._ratio_set and phase is not CurrentPhase.STOP else -1
+            if ratio < 0:
+                ratio = c[name]
         self.current_ratio = ratio
         self.phase_current = phase_current(c["Current"], ratio)
         if self._overcurrent.step(self.phase_current, TICK):
             self._raise(1413, f"overcurrent {self.phase_current:g} A for too long (thermal model)",
-                        cause=lambda: self._overcurrent.load > 0.0)
+                        cause=self._overloaded)
         # automatic brake bit (D23)
         if self._brake_auto:
             if self.feed.ended(cycle) and v == 0.0:
@@ -302,9 +267,23 @@ class Drive:
                     self._brake_auto = False
 
 
-_RATIO_NAMES = {
-    CurrentPhase.STANDSTILL: "Current_Ratio_StandStill",
-    CurrentPhase.RAMP_UP: "Current_Ratio_RampUp",
-    CurrentPhase.DRIVE: "Current_Ratio_Drive",
-    CurrentPhase.RAMP_DOWN: "Current_Ratio_RampDown",
-}
+    @property
+    def brake(self) -> bool:
+        """The Break bit: 1 brake vented (released)."""
+        return self._brake_auto or self._sig.brake_manual
+
+    def _raise(self, code: int, text: str = "", cause: Callable[[], bool] | None = None) -> None:
+        """Raise a device error or warning. An error switches the output stage off at once."""
+        if not self.errors.raise_code(code, text, cause=cause):
+            return
+        if error_class(code) is ErrorClass.WARNING:
+            return
+        self._error_since = self._cycle or 0
+        if self._ready:
+            self._lose_ready()
+        self._ready = False
+        self._stage_on = False
+        self._axis_power(False)
+        self.current_phase = CurrentPhase.OFF  # the output stage is off: no current from now on
+        self.phase_current = 0.0
+        self.current_ratio = 0

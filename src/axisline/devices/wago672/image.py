@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from enum import IntFlag
 
 __all__ = [
+    "MODE_BITS",
     "IMAGE_SIZE",
     "OFFSET_C0",
     "OFFSET_D0",
@@ -471,3 +472,6 @@ class InputImage:
         if len(raw) != IMAGE_SIZE:
             raise ImageError(f"the input image is {IMAGE_SIZE} bytes, got {len(raw)}")
         return cls(raw[OFFSET_C0], raw[OFFSET_C1], raw[OFFSET_C2], raw[OFFSET_C3], raw[OFFSET_D0 : OFFSET_D0 + 7])
+
+# mode -> its Command bits C1.3 .. C1.7 as a number (speed control: Command[]=3, D1)
+MODE_BITS = {MODE_POSITIONING: 1, MODE_PROGRAM: 2, MODE_SPEED: 3, MODE_REFERENCING: 4, MODE_JOG: 8, MODE_MAILBOX: 16}

@@ -58,10 +58,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
 
 from axisline.devices.wago672.errors import WagoError
 from axisline.devices.wago672.image import (
+    MODE_BITS,
     MODE_IDLE,
     MODE_JOG,
     MODE_MAILBOX,
@@ -75,63 +75,20 @@ from axisline.devices.wago672.image import (
 )
 from axisline.devices.wago672.referencing import RefPhase, RefRun
 from axisline.devices.wago672.trajectory import Ramp, needs_constant_speed, plan_move, plan_speed
-from axisline.devices.wago672.units import Scaling
 from axisline.motion.profiles import Limits, State, plan_velocity
+from axisline.devices.wago672.watches import Watches
+from axisline.devices.wago672.signals import Signals
 
 __all__ = ["MODE_BITS", "Modes"]
 
-# mode -> its Command bits C1.3 .. C1.7 as a number (speed control: Command[]=3, D1)
-MODE_BITS = {MODE_POSITIONING: 1, MODE_PROGRAM: 2, MODE_SPEED: 3, MODE_REFERENCING: 4, MODE_JOG: 8, MODE_MAILBOX: 16}
 
 
-class Modes:
-    """Mixed into `Wago672` (its state: mode, the handshake flags, the set points, jog ...)."""
-
-    config: Any
-    scaling: Scaling
-    program: Any
-    mode: int
-    busy: bool
-    on_target: bool
-    on_speed: bool
-    reference_ok: bool
-    reference_on_target: bool
-    stepping_timeout_ms: int
-    err_range_pos: bool
-    err_range_neg: bool
-    _out: Any
-    _sig: dict[str, bool]
-    _ready: bool
-    _mode_exit: bool
-    _stop_n_ack: bool
-    _start_ack: bool
-    _bad_selection: int
-    _source: str
-    _motion: str | None
-    _stopping: bool
-    _pending: Callable[[], None] | None
-    _target: float | None
-    _last_target: float | None
-    _v_set: float
-    _v_set_f: float
-    _cur_down: Ramp
-    _precalc: dict | None
-    precalc_ack: bool
-    _ref: RefRun | None
-    _ref_pending_shift: float
-    _range_block: int
-    _ls_special: int
-    _ls_left: int | None
-    _mailbox_reference: bool
-    _jog_dir: int
-    _jog_block: bool
-    _jog_started: int
-    _jog_ls: int
-    _jog_outside: bool
+class Modes(Watches):
+    """The operating modes: a layer of `Wago672` over `Watches` (state.py)."""
 
     # ================================================================== mode selection
-    def _select_mode(self, s: dict[str, bool]) -> None:
-        requested = int(s["cmd1"]) | int(s["cmd2"]) << 1 | int(s["cmd3"]) << 2 | int(s["cmd4"]) << 3 | int(s["cmd5"]) << 4
+    def _select_mode(self, s: Signals) -> None:
+        requested = int(s.cmd1) | int(s.cmd2) << 1 | int(s.cmd3) << 2 | int(s.cmd4) << 3 | int(s.cmd5) << 4
         if self.mode != MODE_IDLE:
             bits = MODE_BITS[self.mode]
             still = (requested & bits) == bits
@@ -146,7 +103,7 @@ class Modes:
         if requested == 0:
             self._bad_selection = 0
             return
-        if not (self._ready and self._stop_n_ack and not self._start_ack and not s["start"]):
+        if not (self._ready and self._stop_n_ack and not self._start_ack and not s.start):
             return  # selection waits until the module is ready for it (§3.11.1.1)
         if requested not in MODE_BITS:
             if requested != self._bad_selection:
@@ -171,15 +128,15 @@ class Modes:
         self._ref = None
         self._jog_dir = 0
         if self.program is not None and self.program.running:
-            self.program.stop(self)
+            self.program.stop(self)  # type: ignore[arg-type]  # a layer of Wago672
         if not self._at_rest() and not self._stopping:
             self._stop_fast()
         self.on_target = False
         self.busy = False
 
     # ================================================================== Start
-    def _on_start(self, s: dict[str, bool]) -> None:
-        if s["error_quit"]:
+    def _on_start(self, s: Signals) -> None:
+        if s.error_quit:
             self._raise(1361, "Start while Error_Quit is set")
             return
         if not self._ready:
@@ -193,23 +150,23 @@ class Modes:
         mode = self.mode
         if mode in (MODE_JOG, MODE_MAILBOX):
             return  # D2: no handshake, no error
-        if not s["stop2_n"] or not s["stop1_n"]:
+        if not s.stop2_n or not s.stop1_n:
             return
         self._source = "pi"
         ok = True
         try:
             if mode == MODE_POSITIONING:
-                if s["precalc"] and self._precalc is not None:
+                if s.precalc and self._precalc is not None:
                     ok = self._start_precalc()
                 else:
                     sp = PositioningSetpoints.decode(self._out.data)
                     ok = self._pi_position(sp.velocity, sp.acceleration, sp.target)
             elif mode == MODE_SPEED:
-                if s["precalc"] and self._precalc is not None:
+                if s.precalc and self._precalc is not None:
                     ok = self._start_precalc()
                 else:
-                    sp = SpeedSetpoints.decode(self._out.data)
-                    ok = self._pi_speed(sp.velocity, sp.acceleration)
+                    ssp = SpeedSetpoints.decode(self._out.data)
+                    ok = self._pi_speed(ssp.velocity, ssp.acceleration)
             elif mode == MODE_REFERENCING:
                 ok = self._pi_reference(s)
             elif mode == MODE_PROGRAM:
@@ -218,7 +175,7 @@ class Modes:
                 self._pending = None
                 if not self._at_rest():
                     self._stop_fast()
-                self.program.start(ProgramSetpoints.decode(self._out.data).start_counter, self)
+                self.program.start(ProgramSetpoints.decode(self._out.data).start_counter, self)  # type: ignore[arg-type]  # a layer of Wago672
                 self._source = "program"
         except WagoError as e:
             self._raise(e.code, e.text)
@@ -262,7 +219,7 @@ class Modes:
         c = self.config.values
         if velocity > c["Speed_Limit"]:
             raise WagoError(1212, f"Velocity = {velocity} is above Speed_Limit = {c['Speed_Limit']}")
-        if self._sig.get("setup_active", False):
+        if self._sig.setup_active:
             velocity = min(velocity, max(c["SetupSpeed"], 1))
         f = self.scaling.frequency(velocity)
         st = self._state()
@@ -335,8 +292,8 @@ class Modes:
             self._raise(e.code, e.text)
 
     # ---- PreCalc (§3.7.2 C2.6)
-    def _precalc_step(self, s: dict[str, bool], edge: bool) -> None:
-        if not s["precalc"]:
+    def _precalc_step(self, s: Signals, edge: bool) -> None:
+        if not s.precalc:
             self._precalc, self.precalc_ack = None, False
             return
         if not edge:
@@ -398,8 +355,8 @@ class Modes:
         return self._pi_position(pc["v"], pc["a"], pc["target"])
 
     # ---- referencing
-    def _pi_reference(self, s: dict[str, bool]) -> bool:
-        pos, neg = s["dir_pos"], s["dir_neg"]
+    def _pi_reference(self, s: Signals) -> bool:
+        pos, neg = s.dir_pos, s.dir_neg
         if pos and neg:
             # "The drive is deactivated when the bit Direction_Neg is set at the same time" (D7)
             self._ref = None
@@ -413,7 +370,7 @@ class Modes:
         self._mailbox_reference = False
         return self._start_reference(1 if pos else -1, bool(mode & 1), 1 if mode & 2 else -1, s)
 
-    def _start_reference(self, direction: int, to_limit: bool, edge: int, s: dict[str, bool]) -> bool:
+    def _start_reference(self, direction: int, to_limit: bool, edge: int, s: Signals) -> bool:
         """Begin a reference run; False if it cannot start at a limit switch."""
         c = self.config.values
         if c["SetupSpeed"] == 0:
@@ -430,7 +387,7 @@ class Modes:
         self._ref_pending_shift = 0.0
         run = RefRun(self, direction, to_limit, edge, f, a)
         self._ref = run
-        if not run.start(s["set_reference"], s["ls_pos"], s["ls_neg"]):
+        if not run.start(s.set_reference, s.ls_pos, s.ls_neg):
             if run.phase is RefPhase.BLOCKED:
                 # at the limit switch of the start direction: no motion, Err_Range (no error)
                 self._range_block = direction
@@ -496,9 +453,9 @@ class Modes:
         self._raise(code, text)
 
     # ================================================================== jog
-    def _jog_step(self, s: dict[str, bool], cycle: int) -> None:
-        pos = s["jog_pos"] or s["dir_pos"]
-        neg = s["jog_neg"] or s["dir_neg"]
+    def _jog_step(self, s: Signals, cycle: int) -> None:
+        pos = s.jog_pos or s.dir_pos
+        neg = s.jog_neg or s.dir_neg
         c = self.config.values
         want = 0 if pos == neg else (1 if pos else -1)
         if pos and neg:
@@ -522,11 +479,11 @@ class Modes:
                 self._jog_velocity(0.0)
             return
         # a new press: not toward an active limit switch
-        if (want > 0 and s["ls_pos"]) or (want < 0 and s["ls_neg"]):
+        if (want > 0 and s.ls_pos) or (want < 0 and s.ls_neg):
             return
         u = self._user_position()
         self._jog_outside = u is not None and not (c["Drive_Range_Neg"] <= u <= c["Drive_Range_Pos"])
-        self._jog_ls = 1 if s["ls_pos"] else -1 if s["ls_neg"] else 0
+        self._jog_ls = 1 if s.ls_pos else -1 if s.ls_neg else 0
         self._jog_dir = want
         self._jog_started = cycle
         speed = max(c["SetupSpeed"], 1)  # "If the setup speed is parameterized as zero ... speed 1"

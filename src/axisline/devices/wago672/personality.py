@@ -59,7 +59,8 @@ from axisline.devices.wago672.coupler import MAX_MODULES, Coupler
 from axisline.devices.wago672.device import Wago672
 from axisline.devices.wago672.image import MODE_NAMES, OFFSET_C1, OFFSET_C2, InputImage
 from axisline.devices.wago672.mailbox import attach
-from axisline.devices.wago672.plc import PlcScript, PlcStep, error_text
+from axisline.devices.wago672.plc import PlcStep
+from axisline.devices.wago672.plcscript import PlcScript, error_text
 from axisline.devices.wago672.runreport import headline, report_section
 from axisline.kernel.atomic import unwritable_reason
 

@@ -95,10 +95,11 @@ class DataRecorder:
     def tick(self, cycle: int) -> None:
         dev = self.device
         try:
-            trigger, armed = dev.bits.values(self._trigger_bits)
+            w = dev.bits.word(self._trigger_bits)
         except WagoError as e:
             dev.raise_error(e.code, e.text)
             return
+        trigger, armed = w & 1 == 1, w & 2 == 2
         edge = trigger and self._prev is False
         self._prev = trigger
         if edge and armed and not self.recording:

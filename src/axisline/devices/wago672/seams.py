@@ -32,7 +32,7 @@ from collections.abc import Callable, Mapping
 from functools import partial
 from typing import TYPE_CHECKING, Any, Protocol
 
-from axisline.devices.wago672.commands import RC
+from axisline.devices.wago672.opcodes import RC
 from axisline.devices.wago672.errors import WagoError
 
 if TYPE_CHECKING:

@@ -30,14 +30,12 @@ test_positioning.py::test_exchange_of_wago_md_9_12.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 from axisline.devices.wago672.bits import SPREAD
 from axisline.devices.wago672.errors import WagoError, blink_signal, err_flag
-from axisline.devices.wago672.image import MODE_IDLE, MODE_JOG, S0
-from axisline.devices.wago672.modes import MODE_BITS
-from axisline.devices.wago672.trajectory import Feed
-from axisline.devices.wago672.units import Scaling
+from axisline.devices.wago672.image import MODE_BITS, MODE_IDLE, MODE_JOG, S0
+from axisline.devices.wago672.drive import Drive
+from axisline.devices.wago672.signals import Signals
 
 __all__ = ["Watches"]
 
@@ -45,47 +43,8 @@ _S0_MBX = int(S0.MBX)
 _S0_ERR = int(S0.ERR)
 
 
-class Watches:
-    """Mixed into `Wago672` (its state: the set point, the motion running, the flags ...)."""
-
-    config: Any
-    scaling: Scaling
-    feed: Feed
-    bits: Any
-    errors: Any
-    program: Any
-    mode: int
-    busy: bool
-    on_target: bool
-    on_speed: bool
-    reference_ok: bool
-    precalc_ack: bool
-    reset_flag: bool
-    err_range_pos: bool
-    err_range_neg: bool
-    velocity_target: int
-    cam_pattern: Any
-    _sp: tuple[float, float, float, float]
-    _motion: str | None
-    _stopping: bool
-    _pending: Any
-    _target: float | None
-    _v_set: float
-    _ready: bool
-    _stop_n_ack: bool
-    _start_ack: bool
-    _mode_exit: bool
-    _direction: bool
-    _mbx_on: bool
-    _error_since: int
-    _ref: Any
-    _range_block: int
-    _ls_special: int
-    _ls_left: int | None
-    _jog_dir: int
-    _jog_block: bool
-    _jog_ls: int
-    _jog_outside: bool
+class Watches(Drive):
+    """What the module watches each tick: a layer of `Wago672` over `Drive` (state.py)."""
 
     def _user_position(self) -> float | None:
         """Position in user units for the software limits (None: limits not in force)."""
@@ -101,7 +60,7 @@ class Watches:
     def _check_limit_switch(self, direction: int) -> None:
         """1931 for a start while a limit switch is active, except leaving it in special mode (D10)."""
         s = self._sig
-        for active, side in ((s.get("ls_pos", False), 1), (s.get("ls_neg", False), -1)):
+        for active, side in ((s.ls_pos, 1), (s.ls_neg, -1)):
             if active and not (self._ls_special == side and direction == -side):
                 raise WagoError(1931, f"{'LimitSwitch_Pos' if side > 0 else 'LimitSwitch_Neg'} is active")
 
@@ -119,24 +78,24 @@ class Watches:
             return True
         return False
 
-    def _watch_limits(self, s: dict[str, bool], cycle: int) -> None:
+    def _watch_limits(self, s: Signals, cycle: int) -> None:
         v = self.feed.state(self._c_plan())[1]  # the last set point's velocity (as `_state`)
         # special mode after a reference run to a limit switch ends 100 ms after leaving it
         if self._ls_special:
-            on = s["ls_pos"] if self._ls_special > 0 else s["ls_neg"]
+            on = s.ls_pos if self._ls_special > 0 else s.ls_neg
             if on:
                 self._ls_left = None
             elif self._ls_left is None:
                 self._ls_left = cycle
             elif cycle - self._ls_left >= 100:
                 self._ls_special = 0
-        if self._range_block and not (s["ls_pos"] if self._range_block > 0 else s["ls_neg"]):
+        if self._range_block and not (s.ls_pos if self._range_block > 0 else s.ls_neg):
             self._range_block = 0
         if self._motion == "reference" or (self._ref is not None and self._ref.active):
             return  # the reference run handles limit switches; software limits are off
         jog = self.mode == MODE_JOG and self._motion == "jog"
         # hardware limit switches: brake when moving toward an active one
-        if (v > 0.0 and s["ls_pos"]) or (v < 0.0 and s["ls_neg"]):
+        if (v > 0.0 and s.ls_pos) or (v < 0.0 and s.ls_neg):
             if not self._stopping:
                 self._stop_fast("jog" if jog else "stop")
                 if jog:
@@ -145,7 +104,7 @@ class Watches:
             return
         if jog and self._jog_ls and not self._stopping:
             # JogMode: leaving the limit switch the drive started on brakes again (§3.11.3.1)
-            if not (s["ls_pos"] if self._jog_ls > 0 else s["ls_neg"]):
+            if not (s.ls_pos if self._jog_ls > 0 else s.ls_neg):
                 self._jog_ls = 0
                 self._stop_fast("jog")
                 self._jog_dir = 0
@@ -214,7 +173,7 @@ class Watches:
             self.mode = MODE_IDLE
             self._mode_exit = False
 
-    def _update_flags(self, s: dict[str, bool]) -> None:
+    def _update_flags(self, s: Signals) -> None:
         p, v, a, _ = self._sp
         self._direction = v > 0.0  # D13: 1 moving positive; 0 otherwise (valid when moving)
         window = self.config.values["TargetWindowSpeed"]
@@ -242,56 +201,66 @@ class Watches:
             self.err_range_neg = True
 
     # ================================================================== bits out, S0
-    def _write_sources(self, s: dict[str, bool], cycle: int) -> None:
-        """The device's own source bits (§4.5), written into the bit field in runs of adjacent
-        bits (bits.py: each 0 or 1)."""
-        f = self.bits.field
+    def _write_sources(self, s: Signals, cycle: int) -> None:
+        """The device's own source bits (§4.5), written into the bit field (bits.py: each 0 or
+        1) when one of them changed since the last tick, or when someone else wrote a source bit
+        (`BitTable.sources_touched`); most ticks nothing changes and nothing is written."""
         p, v, a, _ = self._sp
         errors = self.errors
         mode = self.mode
         program = self.program
-        f[0x04:0x06] = bytes((
-            1 if self.reset_flag else 0,  # Reset
-            1 if errors.warning else 0,  # Warning
-        ))
-        f[0x08:0x13] = bytes((
-            1 if self.on_target else 0,  # On_Target
-            1 if self.busy else 0,  # Busy
-            v == 0.0,  # StandStill
-            1 if self.on_speed else 0,  # On_Speed
-            1 if self._direction else 0,  # Direction
-            1 if self.reference_ok else 0,  # Reference_OK
-            1 if self.precalc_ack else 0,  # PreCalc_ACK
-            1 if errors.error else 0,  # Error
-            1 if self._ready else 0,  # Ready
-            1 if self._stop_n_ack else 0,  # Stop_N_ACK
-            1 if self._start_ack else 0,  # Start_ACK
-        ))
-        f[0x13:0x18] = SPREAD[MODE_BITS.get(mode, 0) if mode else 0][0:5]  # Command_ACK_1 .. 5
+        code = errors.code
         moving = v != 0.0
-        f[0x18:0x1E] = bytes((
-            1 if self.brake else 0,  # Break
-            1 if errors.code and blink_signal(errors.code, cycle - self._error_since) else 0,  # ERR_Code
-            1 if s["setup_active"] else 0,  # SetupSpeed_Active_ACK
-            1 if program is not None and program.running else 0,  # Program_Running
-            moving and a * v > 0.0,  # Ramp_Up
-            moving and a * v < 0.0,  # Ramp_Down
-        ))
-        f[0x28:0x2B] = bytes((
-            1 if self.err_range_neg else 0,  # Err_Range_Neg
-            1 if self.err_range_pos else 0,  # Err_Range_Pos
-            1 if self.err_range_neg or self.err_range_pos or s["ls_pos"] or s["ls_neg"] else 0,  # Err_Range
-        ))
         steps = int(math.floor(p + 0.5))
         c = self.config.values
-        period9 = c["Camshaft_Ch9_Period"]
-        f[0x2F] = period9 > 0 and (steps - c["Camshaft_Ch9_Start"]) % period9 < c["Camshaft_Ch9_Pulsewidth"]  # CAM9
-        pattern = self.cam_pattern(p) if self.cam_pattern is not None else 0
-        f[0x38:0x40] = SPREAD[pattern & 0xFF]  # CAM1 .. CAM8
+        period9: int = c["Camshaft_Ch9_Period"]
+        cam9 = period9 > 0 and (steps - c["Camshaft_Ch9_Start"]) % period9 < c["Camshaft_Ch9_Pulsewidth"]
+        pattern = (self.cam_pattern(p) if self.cam_pattern is not None else 0) & 0xFF
+        # every bit below, packed: the word that decides whether the field needs writing
+        word = (
+            (1 if self.reset_flag else 0)  # 0x04 Reset
+            | (2 if errors.warning else 0)  # 0x05 Warning
+            | (4 if self.on_target else 0)  # 0x08 On_Target
+            | (8 if self.busy else 0)  # 0x09 Busy
+            | (0 if moving else 16)  # 0x0A StandStill
+            | (32 if self.on_speed else 0)  # 0x0B On_Speed
+            | (64 if self._direction else 0)  # 0x0C Direction
+            | (128 if self.reference_ok else 0)  # 0x0D Reference_OK
+            | (256 if self.precalc_ack else 0)  # 0x0E PreCalc_ACK
+            | (512 if errors.error else 0)  # 0x0F Error
+            | (1024 if self._ready else 0)  # 0x10 Ready
+            | (2048 if self._stop_n_ack else 0)  # 0x11 Stop_N_ACK
+            | (4096 if self._start_ack else 0)  # 0x12 Start_ACK
+            | ((MODE_BITS.get(mode, 0) if mode else 0) & 0x1F) << 13  # 0x13 .. 0x17 Command_ACK_1 .. 5
+            | (1 << 18 if self.brake else 0)  # 0x18 Break
+            | (1 << 19 if code and blink_signal(code, cycle - self._error_since) else 0)  # 0x19 ERR_Code
+            | (1 << 20 if s.setup_active else 0)  # 0x1A SetupSpeed_Active_ACK
+            | (1 << 21 if program is not None and program.running else 0)  # 0x1B Program_Running
+            | (1 << 22 if moving and a * v > 0.0 else 0)  # 0x1C Ramp_Up
+            | (1 << 23 if moving and a * v < 0.0 else 0)  # 0x1D Ramp_Down
+            | (1 << 24 if self.err_range_neg else 0)  # 0x28 Err_Range_Neg
+            | (1 << 25 if self.err_range_pos else 0)  # 0x29 Err_Range_Pos
+            | (1 << 26 if self.err_range_neg or self.err_range_pos or s.ls_pos or s.ls_neg else 0)  # 0x2A Err_Range
+            | (1 << 27 if cam9 else 0)  # 0x2F CAM9
+            | pattern << 28  # 0x38 .. 0x3F CAM1 .. CAM8
+        )
+        bits = self.bits
+        if word == self._sources_word and not bits.sources_touched:
+            return
+        self._sources_word = word
+        bits.sources_touched = False
+        f = bits.field
+        f[0x04:0x06] = SPREAD[word & 0x03][0:2]
+        f[0x08:0x10] = SPREAD[(word >> 2) & 0xFF]
+        f[0x10:0x18] = SPREAD[(word >> 10) & 0xFF]
+        f[0x18:0x1E] = SPREAD[(word >> 18) & 0x3F][0:6]
+        f[0x28:0x2B] = SPREAD[(word >> 24) & 0x07][0:3]
+        f[0x2F] = (word >> 27) & 1
+        f[0x38:0x40] = SPREAD[pattern]
 
-    def _s0(self, s: dict[str, bool]) -> int:
+    def _s0(self, s: Signals) -> int:
         c = self.config.values
         v = _S0_MBX if self._mbx_on else 0
-        if err_flag(c["ErrorNotificationMode"], c["WarningNotificationMode"], bool(self.errors.error), bool(self.errors.warning), s["error_quit"]):
+        if err_flag(c["ErrorNotificationMode"], c["WarningNotificationMode"], bool(self.errors.error), bool(self.errors.warning), s.error_quit):
             v |= _S0_ERR
         return v
