@@ -35,7 +35,9 @@ from .motion.gear import Gear, GearInPos
 from .motion.homing import DirectHoming, SwitchHoming
 from .scope_channels import make_trace
 from .sync_setup import SyncHandle, build_cam, build_master
-from .plant.drives import ANALOG_LIMIT_VOLTS, StepperDrive
+from .actuation import actuator
+from .plant.drives import ServoDrive, StepperDrive
+from .plant.encoder import IncrementalEncoder
 
 _ERROR_STOP = AxisState.ERROR_STOP
 _DISABLED = AxisState.DISABLED
@@ -73,12 +75,21 @@ class AxisUnit:
     travel_low: float = math.inf
     reach: float = math.inf  # the fastest the drive goes (its speed limit, or +-10 V on the analog input)
     travel_high: float = -math.inf
+    # the plant's own servo and encoder, typed (None: another kind, e.g. a drive on CANopen):
+    # compiled code calls them without an attribute lookup or a boxed float on the way
+    servo: ServoDrive | None = field(default=None, init=False, repr=False)
+    plant_encoder: IncrementalEncoder | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         self._unit_per_count = 1.0 / self.encoder.counts_per_unit if self.encoder is not None else 0.0
+        self.servo = self.drive if isinstance(self.drive, ServoDrive) else None
+        self.plant_encoder = self.encoder if isinstance(self.encoder, IncrementalEncoder) else None
 
     def sample(self, cycle: int) -> None:
-        if self.encoder is not None:
+        enc = self.plant_encoder
+        if enc is not None:
+            x = self.actual_position = enc.sample() * self._unit_per_count * self.feedback_sign
+        elif self.encoder is not None:
             x = self.actual_position = self.encoder.sample() * self._unit_per_count * self.feedback_sign
         else:
             x = self.actual_position = self.drive.position * self.feedback_sign
@@ -97,7 +108,8 @@ class AxisUnit:
 
     def loop(self, cycle: int) -> None:
         drive = self.drive
-        v = drive.velocity
+        servo = self.servo
+        v = servo.velocity if servo is not None else drive.velocity
         ctl = self.controller
         v = v * self.feedback_sign  # the drive's velocity as the controller's encoder sees it
         sign = self.output_sign
@@ -267,44 +279,7 @@ class Machine:
         s.add_task(f"{name}.inputs", unit.sample, Stage.INPUTS)
         s.add_task(f"{name}.setpoint", axis.update_setpoint, Stage.SETPOINTS)
         s.add_task(f"{name}.loop", unit.loop, Stage.POSITION_LOOP)
-        s.add_task(f"{name}.actuate", self._actuator(unit), Stage.ACTUATE)
-
-    def _actuator(self, unit: AxisUnit) -> Callable[[int], None]:
-        axis, drive, dt = unit.axis, unit.drive, self.period
-        step = drive.step
-        stepper = isinstance(drive, StepperDrive)
-        # the drive takes the set point itself: a stepper's pulses, a CiA 402 drive in CSP
-        positioned = stepper or unit.config.drive.type == "cia402"
-        analog = not positioned and unit.config.drive.command == "analog"
-        volts_per_velocity = 1.0 / drive.velocity_per_volt if analog else 0.0
-        velocity_per_volt = drive.velocity_per_volt if analog else 0.0
-        top = math.inf if stepper else drive.max_velocity
-        reach = min(top, ANALOG_LIMIT_VOLTS * velocity_per_volt) if analog else top
-        unit.reach = reach
-
-        def actuate(cycle: int) -> None:
-            if (axis.state is not _DISABLED) is not drive.enabled:
-                drive.enable(not drive.enabled)  # the amplifier follows the axis' power
-            if analog:
-                # the classic +-10 V interface: the amplifier's offset, drift and gain errors
-                # apply; a device's analogue output (Machine.drive_by) or the axis' loop output
-                u = unit.command_volts if unit.controller_volts else unit.velocity_output * volts_per_velocity
-                drive.command_voltage(u)
-                asked = u * velocity_per_volt  # nominal units/s
-                # at or beyond +-10 V (a controller clips its own output there) or the speed limit
-                if drive.saturated or u >= ANALOG_LIMIT_VOLTS or u <= -ANALOG_LIMIT_VOLTS or asked > reach or asked < -reach:
-                    unit.note_over(cycle, asked)
-            elif positioned:
-                # the drive follows the set point: a stepper's pulses (open loop), a CiA 402 drive's target
-                drive.command_position(axis.command_position - axis.position_offset)  # axis -> plant frame
-            else:
-                v = unit.velocity_output
-                drive.command_velocity(v)
-                if v > drive.max_velocity or v < -drive.max_velocity:
-                    unit.note_over(cycle, v)
-            step(dt)
-
-        return actuate
+        s.add_task(f"{name}.actuate", actuator(unit, self.period), Stage.ACTUATE)
 
     def drive_by(self, axis: str, controller: Callable[[float, float], float], *, volts: bool = True) -> None:
         """Let a device's own position controller drive `axis` instead of the axis' Kv loop.
