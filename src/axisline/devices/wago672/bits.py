@@ -40,12 +40,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from enum import IntEnum
-from operator import itemgetter
 
 from axisline.devices.wago672.config_table import ConfigTable
 from axisline.devices.wago672.errors import WagoError
 
-__all__ = ["Bit", "BitGroup", "BitTable", "MAX_NESTING", "PACK", "SPREAD"]
+__all__ = ["Bit", "BitGroup", "BitTable", "MAX_NESTING", "SPREAD"]
 
 MAX_NESTING = 4  # "the maximum number of nesting levels is four (4)" (§3.10.4)
 
@@ -163,22 +162,19 @@ _POINTER_TARGETS = range(128, 224)
 _FILTER_BITS = range(168, 176)  # FILT1 .. FILT8
 _SLOW = -1  # a link that is read through the chain each time (a filter on it, or too deep)
 
-# eight 0/1 values <-> the byte they make (bit i = value i): a control byte spread over eight
-# source bits, eight bit values packed into a status byte, without a loop over the bits
+# a byte -> its eight 0/1 values (value i = bit i): a control byte spread over eight source
+# bits without a loop over the bits
 SPREAD = tuple(bytes((v >> i) & 1 for i in range(8)) for v in range(256))
-PACK = {bits: v for v, bits in enumerate(SPREAD)}
-_BOOL = (False, True)
 
 
 class BitGroup:
     """Bits the device reads together every tick (its input signals, the status bytes): the
-    table keeps one gatherer per group, rebuilt when the links change (`BitTable.group`)."""
+    table keeps the places they read, found again when the links change (`BitTable.group`)."""
 
     def __init__(self, bits: tuple[int, ...]) -> None:
         self.bits = bits
-        # field -> the group's values, or None while one of the bits needs the chain (_SLOW)
-        self.gather: Callable[[bytearray], tuple[int, ...]] | None = None
-        # the places in `field` the bits read (as bytes: indexing bytes is cheap in compiled code)
+        # the places in `field` the bits read, or None while one of them needs the chain
+        # (_SLOW); bytes, since indexing bytes is cheap in compiled code
         self.places: bytes | None = None
 
 
@@ -230,7 +226,6 @@ class BitTable:
         self._generation = self.config.generation
         for g in self._groups:
             places = [self._link[n] for n in g.bits]
-            g.gather = None if _SLOW in places else itemgetter(*places)
             g.places = None if _SLOW in places else bytes(places)
 
     def _chain_end(self, n: int, depth: int) -> int:
@@ -254,29 +249,16 @@ class BitTable:
             raise ValueError(f"a bit group needs two or more bit numbers 0 .. 255, got {bits!r}")
         g = BitGroup(tuple(int(n) for n in bits))
         self._groups.append(g)
-        self._generation = -1  # its gatherer is made with the next read
+        self._generation = -1  # its places are found with the next read
         return g
 
     def values(self, g: BitGroup) -> tuple[bool, ...]:
         """The values of a group's bits, in its order (as `read` of each, in that order)."""
-        if self._generation != self.config.generation:
-            self._relink()
-        gather = g.gather
-        if gather is not None:
-            return tuple(map(_BOOL.__getitem__, gather(self.field)))
-        return tuple(self._resolve(n, 0) for n in g.bits)
-
-    def levels(self, g: BitGroup) -> bytes:
-        """`values` as 0/1 bytes (PACK[levels[i:i + 8]] is a byte of eight of them)."""
-        if self._generation != self.config.generation:
-            self._relink()
-        gather = g.gather
-        if gather is not None:
-            return bytes(gather(self.field))
-        return bytes(self._resolve(n, 0) for n in g.bits)
+        w = self.word(g)
+        return tuple(w >> i & 1 == 1 for i in range(len(g.bits)))
 
     def word(self, g: BitGroup) -> int:
-        """`values` packed into an int: bit i is the group's i-th bit (the tick's way to read)."""
+        """The group's bits packed into an int: bit i is the value of its i-th bit (as `read`)."""
         if self._generation != self.config.generation:
             self._relink()
         places = g.places
@@ -367,16 +349,7 @@ class BitTable:
         g = self._bytes.get(first)
         if g is None:
             g = self._bytes[first] = self.group(tuple(range(first, first + 8)))
-        if self._generation != self.config.generation:
-            self._relink()
-        gather = g.gather
-        if gather is not None:
-            return PACK[bytes(gather(self.field))]
-        v = 0
-        for i in range(8):
-            if self.read(first + i):
-                v |= 1 << i
-        return v
+        return self.word(g)
 
     # ---- writing (mailbox WR_BIT, run program)
     def writable(self, n: int) -> bool:
