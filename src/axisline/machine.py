@@ -31,7 +31,8 @@ from .job import JobRunner
 from .kernel import Clock, Scheduler, SimulatedClock, Stage, Trace
 from .motion.axis import Axis, AxisConfig, AxisState, BufferMode, Direction
 from .motion.camsync import CamFollower, CamState
-from .motion.gear import Gear, GearInPos
+from .motion.gear import Gear
+from .motion.gear_in_position import GearInPos
 from .motion.homing import DirectHoming, SwitchHoming
 from .scope_channels import make_trace
 from .sync_setup import SyncHandle, build_cam, build_master

@@ -9,7 +9,8 @@ from fractions import Fraction
 import pytest
 
 from axisline.motion.axis import Axis, AxisConfig, AxisState
-from axisline.motion.gear import Gear, GearError, GearInPos, GearInPosError
+from axisline.motion.gear import Gear, GearError
+from axisline.motion.gear_in_position import GearInPos, GearInPosError
 from axisline.motion.master import EncoderMaster, Master, TimeBase, VirtualMaster
 from axisline.plant.encoder import IncrementalEncoder
 

@@ -15,7 +15,7 @@ carriage (axis 1) carries the tool. Material coordinates: the point of the mater
 tool is ``c = m - s`` (m: master encoder 1's position, s: the carriage's position, home = 0), so
 a carriage geared 1:1 to the wheel keeps its tool on one point of the material. For each length
 instruction the cut point is the previous one plus the length (plus the A141 tool width); the
-carriage is coupled with the kernel's gear in position (`motion.gear.GearInPos`, the flying
+carriage is coupled with the kernel's gear in position (`motion.gear_in_position.GearInPos`, the flying
 saw) so that it reaches the sync stroke ``s_sync`` at the material's speed exactly when the
 wheel passes ``m_sync = c + s_sync``: from there on the integer gear law holds the tool on the
 cut point (no drift: counts, not floats). LML proceeds when the carriage is synchronous, the
@@ -91,7 +91,8 @@ from collections import deque
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
-from axisline.motion.gear import Gear, GearInPos, GearInPosError
+from axisline.motion.gear import Gear
+from axisline.motion.gear_in_position import GearInPos, GearInPosError
 
 from .cutoff_inputs import CutoffInputs
 from .cutoff_raster import RasterWatch, Spot

@@ -29,7 +29,7 @@ The cut cycle (spec §2.3)
 Length mode (Cutting Mode 1): cut k targets the material point that passes the carriage home
 position when the master reads T_k; T_{k+1} = T_k + (Cutting Length or Test Cut. Length) +
 Tool Width. The carriage waits at home. The approach is planned in the MASTER domain (as
-gear.GearInPos does, but with the FS701's own ramp): with V the filtered line speed when the
+gear_in_position.GearInPos does, but with the FS701's own ramp): with V the filtered line speed when the
 approach starts, R = 1 + Sync Rate/100 and v_s = R V,
 
     tau = (m - m_start) / V,   s(tau) = a ramp 0 -> v_s at Acceleration 1 (linear, or the
