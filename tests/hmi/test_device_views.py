@@ -17,7 +17,7 @@ from typing import Any
 import pytest
 
 from axisline.devices.compax.curves import read_curve
-from axisline.devices.fs701.registers import decode_words
+from axisline.devices.fs701.modbus_map import decode_words
 from axisline.devices.wago672.coupler import OUTPUT_READBACK, unpack
 from axisline.devices.wago672.image import InputImage
 from axisline.devices.wago672.mailbox import MbxOpcode

@@ -13,7 +13,7 @@ from pathlib import Path
 import psutil
 from pymodbus.client import ModbusTcpClient
 
-from axisline.devices.fs701.registers import encode_words
+from axisline.devices.fs701.modbus_map import encode_words
 
 import serving
 

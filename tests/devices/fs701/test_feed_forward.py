@@ -17,7 +17,7 @@ from axisline.devices.fs701.cut_settings import CutterSettings
 from axisline.devices.fs701.cut_states import ACC_WINDOW
 from axisline.devices.fs701.line_master import LineMaster
 from axisline.devices.fs701.loop import LEAD_MAX_MS, PositionLoop, _AdjustRig, tune_gain, tune_lead, tune_offset
-from axisline.devices.fs701.registers import encode_words
+from axisline.devices.fs701.modbus_map import encode_words
 from axisline.machine import Machine
 from axisline.plant import IncrementalEncoder, MaterialLine
 

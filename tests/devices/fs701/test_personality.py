@@ -18,7 +18,7 @@ from axisline.devices.fs701.cutter import ControlState, CutState
 from axisline.devices.fs701.drivecom import ACK, NAK, DrivecomClient, build_read, build_write
 from axisline.devices.fs701.paramfile import load_parameter_file
 from axisline.devices.fs701.personality import Fs701Personality
-from axisline.devices.fs701.registers import encode_words
+from axisline.devices.fs701.modbus_map import encode_words
 from axisline.fieldbus.modbus import RegisterRefused
 from axisline.machine import Machine
 from axisline.motion.axis import AxisState

@@ -13,7 +13,8 @@ import pytest
 
 from axisline.devices.fs701.cutter import ControlState
 from axisline.devices.fs701.drivecom import DrivecomClient
-from axisline.devices.fs701.registers import ReadOnlyRegisterError, encode_words
+from axisline.devices.fs701.modbus_map import encode_words
+from axisline.devices.fs701.registers import ReadOnlyRegisterError
 from axisline.devices.fs701.status import StatusError
 from axisline.fieldbus.modbus import RegisterRefused
 

@@ -8,27 +8,29 @@ from hypothesis import strategies as st
 
 from axisline.devices.fs701.io_assign import IOAssignment
 from axisline.devices.fs701.parameters import BLOCKS, PARAMETERS, ParameterSet
-from axisline.devices.fs701.registers import (
+from axisline.devices.fs701.modbus_map import (
     MODBUS_MAP,
     MODBUS_WIDE_BASE,
+    ModbusError,
+    ModbusImage,
+    decode_words,
+    encode_words,
+    modbus_entry,
+    modbus_read,
+    modbus_table_markdown,
+    modbus_write,
+)
+from axisline.devices.fs701.registers import (
     REGISTERS,
     REGISTERS_BY_CODE,
     CommandRefusedError,
-    ModbusError,
-    ModbusImage,
     ReadOnlyRegisterError,
     RegisterFormatError,
     RegisterKind,
     RegisterMap,
     RegisterRangeError,
     UnknownRegisterError,
-    decode_words,
-    encode_words,
     format_display,
-    modbus_entry,
-    modbus_read,
-    modbus_table_markdown,
-    modbus_write,
     parse_display,
     parse_wire,
     register,

@@ -25,7 +25,7 @@ from serving import Fed
 
 from axisline.config import parse_machine
 from axisline.devices.fs701.drivecom import ACK, ETX, NAK, STX, build_read, build_write, parse_reply
-from axisline.devices.fs701.registers import encode_words
+from axisline.devices.fs701.modbus_map import encode_words
 from axisline.fieldbus.modbus import ModbusServer
 from axisline.fieldbus.serial_tcp import PtyBridge, SerialTcpServer
 from axisline.machine import Machine

@@ -122,7 +122,8 @@ from .line import BatchJob, CommissioningReport, CutMeasurement, CutMeter, Shear
 from .loop import cycle_test, direction_check, tune_gain, tune_lead, tune_offset
 from .parameters import ParameterError, ParameterSet, parameter
 from .paramfile import ParamFileError, load_parameter_file, save_parameters
-from .registers import CommandRefusedError, RegisterError, RegisterMap, modbus_read, modbus_write, ModbusError
+from .modbus_map import modbus_read, modbus_write, ModbusError
+from .registers import CommandRefusedError, RegisterError, RegisterMap
 from .status import COUNTER_MIRRORS, ERRORS, PROCESS_BASE, ClearReason, StatusImage
 
 __all__ = ["Fs701Config", "ShearConfig", "Fs701Personality", "DEFAULT_INPUTS"]

@@ -411,7 +411,8 @@ def serial_markdown() -> str:
     """docs/fs701-serial.md: the Drivecom framing and the register and Modbus maps (generated)."""
     from . import drivecom as dc
     from .io_assign import INPUT_FUNCTIONS, OUTPUT_SIGNALS
-    from .registers import MODBUS_MAP, MODBUS_WIDE_BASE, REGISTERS, RegisterKind
+    from .modbus_map import MODBUS_MAP, MODBUS_WIDE_BASE
+    from .registers import REGISTERS, RegisterKind
     from .status import ERRORS, STATUS_WORDS
 
     def raw_range(r: Any) -> str:
