@@ -44,7 +44,7 @@ from typing import Any, Iterable, NamedTuple
 
 from axisline.motion.profiles import State
 
-from .cutter import CutterSettings, approach_geometry, return_profile, v_return_max
+from .cut_settings import CutterSettings, approach_geometry, return_profile, v_return_max
 
 __all__ = ["EnvelopePoint", "CycleBudget", "cycle_budget", "envelope", "feasible", "plot_envelope", "envelope_command"]
 

@@ -104,7 +104,9 @@ from axisline.configerrors import ConfigError
 from axisline.devices.base import Personality
 from axisline.kernel.atomic import unwritable_reason
 
-from .cutter import _WASTE, CutInfo, CutKind, Cutter, CutState, CutterInputs, CutterSettings
+from .cut_states import _WASTE
+from .cutter import CutKind, Cutter, CutState, CutterInputs, CutterSettings
+from .cutter_state import CutInfo
 from .drivecom import DrivecomEndpoint, DrivecomSession
 from .io_assign import (
     HW_INPUTS,

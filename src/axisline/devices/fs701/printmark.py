@@ -79,7 +79,8 @@ from typing import Any
 from axisline.motion.registration import ChannelMotion, MarkCapture, MarkKind, MarkQueue, MarkVerdict, MarkWindow
 
 # cutter.py imports this module lazily (in Cutter.__init__), so this import is never circular
-from .cutter import _V_EPS, CutInfo, CutKind, CutState, FS701Error
+from .cut_states import _V_EPS, CutKind, CutState, FS701Error
+from .cutter_state import CutInfo
 
 __all__ = ["PrintMarkControl", "FIFO_CAPACITY"]
 
