@@ -1,6 +1,24 @@
 """MC_GearInPos: a gear that reaches its sync state exactly when the master passes the sync
 position (`GearInPos`), its feasibility check (`SyncCheck`) and error (`GearInPosError`).
-gear.py's docstring describes gearing in position with the rest of the gear.
+After the sync it is an ordinary `Gear` (gear.py).
+
+`GearInPos(master, slave, n, d, master_sync_position=m_sync, slave_sync_position=s_sync)`
+makes the slave reach s = s_sync + ratio * (m - m_sync) with matching velocity exactly when
+the master passes m_sync. The approach is planned in the master domain: its time variable
+is tau = (m - m0) / V (m0: master position at `gear_in`, V: the nominal master speed, the
+master's velocity then or `master_velocity`). In tau the slave waits, then makes the
+time-optimal move of profiles.plan (the axis shape and limits, speed capped at `velocity`)
+from its state to (s_sync, ratio * V), started so that it ends exactly at
+tau_sync = (m_sync - m0) / V. Sampling the move at tau(m) of the actual master position
+makes the synchronisation exact even when the master speed changes during the approach
+(the slave's real speed and acceleration then scale with m'/V and (m'/V)^2). A slave that
+is moving at the start coasts at its velocity (acceleration ramped out) before the move;
+the start of the move is then found by bisection (the end time is monotonic in it).
+When the master passes m_sync, the integer law takes over, referenced at the sync point.
+
+Infeasible requests are reported before any motion: the constructor and `gear_in` raise
+GearInPosError naming the master distance the slave needs and the distance available;
+`check()` returns the same as a SyncCheck without raising.
 """
 
 from __future__ import annotations
