@@ -223,6 +223,14 @@ class Drive(DeviceState):
         accelerating = st.a * st.v > 0.0 or st.v == 0.0
         return (self._cur_up if accelerating else self._cur_down).smooth
 
+    def _start_or_defer(self, go: Callable[[], None], new_needs_rest: bool) -> None:
+        """Start a new set point now, or keep it until v = const (D8: `_defer`)."""
+        if self._defer(new_needs_rest):
+            self._pending = go
+        else:
+            self._pending = None
+            go()
+
     def _overloaded(self) -> bool:
         """The cause of 1413: the thermal model has not cooled back to 0 (D22)."""
         return self._overcurrent.load > 0.0

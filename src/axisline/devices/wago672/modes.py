@@ -241,11 +241,7 @@ class Modes(Watches):
         def go() -> None:
             self._run(plan_move(self._state(), target, f, up, down, f_end), "position", up, down)
 
-        if self._defer(needs_constant_speed(up, down)):
-            self._pending = go
-        else:
-            self._pending = None
-            go()
+        self._start_or_defer(go, needs_constant_speed(up, down))
         return True
 
     # ---- speed control
@@ -278,11 +274,7 @@ class Modes(Watches):
         def go() -> None:
             self._run(plan_speed(self._state(), f, up, down), "speed", up, down)
 
-        if self._defer(needs_constant_speed(up, down)):
-            self._pending = go
-        else:
-            self._pending = None
-            go()
+        self._start_or_defer(go, needs_constant_speed(up, down))
         return True
 
     def _guard(self, action: Callable[[], None]) -> None:
